@@ -1,0 +1,34 @@
+# Thin wrapper around CMake. `make verify` runs the suite; `make check` runs the tests.
+BUILD ?= build
+TYPE ?= Release
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?=
+
+.PHONY: all deps build check verify cases bench sanitize clean
+
+all: build
+
+deps:
+	@scripts/install-deps
+
+build: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(TYPE) $(CMAKE_FLAGS) > /dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+check: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
+
+verify: build
+	@scripts/verify $(BUILD)
+
+cases: build
+	@scripts/verify $(BUILD) --cases
+
+bench: build
+	@scripts/bench $(BUILD)
+
+sanitize:
+	@$(MAKE) check BUILD=build-sanitize TYPE=Sanitize
+
+clean:
+	rm -rf build build-sanitize

@@ -1,0 +1,2 @@
+// placeholder, replaced by the bench helper
+int main() { return 0; }

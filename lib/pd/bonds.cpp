@@ -1,0 +1,122 @@
+// Neighbour search by cell lists, O(N) for bounded density, and CSR bond families (bonds.hpp).
+#include "pd/bonds.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace pd {
+
+PartialVolume parse_partial_volume(const std::string& name)
+{
+    if (name == "none") return PartialVolume::none;
+    if (name == "pa-pdlammps") return PartialVolume::pa_pdlammps;
+    throw std::invalid_argument("unknown partial-volume option '" + name + "' (none, pa-pdlammps)");
+}
+
+template <int D>
+Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
+{
+    if (!(delta > 0)) throw std::invalid_argument("horizon delta must be positive");
+    const std::size_t n = body.size();
+    Bonds b;
+    b.delta = delta;
+    b.offset.assign(n + 1, 0);
+    if (n == 0) return b;
+    if (opt.partial_volume == PartialVolume::pa_pdlammps && !(body.dx > 0))
+        throw std::invalid_argument("pa-pdlammps partial volumes need a lattice spacing (dx > 0)");
+
+    // 1. Cell lists: cells of side delta over the bounding box, nodes sorted by cell.
+    Vec<D> lo, hi;
+    for (int d = 0; d < D; ++d) {
+        lo[d] = *std::min_element(body.x.c[d].begin(), body.x.c[d].end());
+        hi[d] = *std::max_element(body.x.c[d].begin(), body.x.c[d].end());
+    }
+    std::array<long, D> nc{};
+    long ncell = 1;
+    for (int d = 0; d < D; ++d) {
+        nc[d] = std::max(1L, static_cast<long>((hi[d] - lo[d]) / delta) + 1);
+        ncell *= nc[d];
+    }
+    auto cell_coord = [&](std::size_t i, int d) {
+        return std::min(nc[d] - 1, static_cast<long>((body.x.c[d][i] - lo[d]) / delta));
+    };
+    std::vector<long> cell_start(ncell + 1, 0), cell_of(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        long c = 0;
+        for (int d = D - 1; d >= 0; --d) c = c * nc[d] + cell_coord(i, d);
+        cell_of[i] = c;
+        ++cell_start[c + 1];
+    }
+    for (long c = 0; c < ncell; ++c) cell_start[c + 1] += cell_start[c];
+    std::vector<int> sorted(n);
+    {
+        std::vector<long> fillp(cell_start.begin(), cell_start.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) sorted[fillp[cell_of[i]]++] = static_cast<int>(i);
+    }
+
+    // 2. Families, sorted by partner index for locality.
+    const double reach = delta * (1 + horizon_roundoff);
+    const double h = body.dx;
+    std::vector<int> fam;
+    for (std::size_t i = 0; i < n; ++i) {
+        fam.clear();
+        std::array<long, D> ci{};
+        for (int d = 0; d < D; ++d) ci[d] = cell_coord(i, d);
+        const Vec<D> xi = body.x[i];
+        long nb = 1;
+        for (int d = 0; d < D; ++d) nb *= 3;
+        for (long s = 0; s < nb; ++s) {
+            long rest = s, c = 0;
+            std::array<long, D> cj{};
+            bool ok = true;
+            for (int d = 0; d < D; ++d) {
+                cj[d] = ci[d] + rest % 3 - 1;
+                rest /= 3;
+                if (cj[d] < 0 || cj[d] >= nc[d]) ok = false;
+            }
+            if (!ok) continue;
+            for (int d = D - 1; d >= 0; --d) c = c * nc[d] + cj[d];
+            for (long q = cell_start[c]; q < cell_start[c + 1]; ++q) {
+                const int j = sorted[q];
+                if (j == static_cast<int>(i)) continue;
+                if (norm(body.x[j] - xi) > reach) continue;
+                if (opt.keep && !opt.keep(static_cast<int>(i), j)) continue;
+                fam.push_back(j);
+            }
+        }
+        std::sort(fam.begin(), fam.end());
+        for (int j : fam) {
+            const double r = norm(body.x[j] - xi);
+            if (r == 0) throw std::invalid_argument("duplicate points " + std::to_string(i) + " and " + std::to_string(j));
+            double beta = 1;
+            if (opt.partial_volume == PartialVolume::pa_pdlammps && r > delta - h / 2)
+                beta = std::min(1.0, (delta + h / 2 - r) / h);  // spec/002 sec. 3.2, PA-PDLAMMPS
+            b.partner.push_back(j);
+            b.length.push_back(r);
+            b.omega.push_back(opt.influence(r, delta));
+            b.volume.push_back(beta * body.volume[j]);
+        }
+        b.offset[i + 1] = static_cast<std::int64_t>(b.partner.size());
+    }
+
+    // 3. Reverse-bond index: families are sorted by partner, so j->i is found by binary search.
+    b.reverse.resize(b.size());
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::int64_t k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+            const int j = b.partner[k];
+            auto first = b.partner.begin() + b.offset[j], last = b.partner.begin() + b.offset[j + 1];
+            auto it = std::lower_bound(first, last, static_cast<int>(i));
+            if (it == last || *it != static_cast<int>(i))
+                throw std::logic_error("bond family is not symmetric (keep filter must be symmetric)");
+            b.reverse[k] = it - b.partner.begin();
+        }
+    return b;
+}
+
+template Bonds build_bonds<1>(const Body<1>&, double, const BondOptions&);
+template Bonds build_bonds<2>(const Body<2>&, double, const BondOptions&);
+template Bonds build_bonds<3>(const Body<3>&, double, const BondOptions&);
+
+}  // namespace pd

@@ -1,0 +1,54 @@
+// Bond families in CSR form (offsets, partners) with structure-of-arrays per-bond data, the
+// reverse-bond index (bond j->i of bond i->j in O(1)), and the neighbour search by cell lists.
+// A family holds every j != i with |x_j - x_i| <= delta (boundary included).
+// Partial volumes (spec/002 sec. 3.2): `none` uses the full V_j; `pa-pdlammps` scales V_j by
+//   beta = 1 for |xi| <= delta - h/2,  beta = (delta + h/2 - |xi|)/h for delta - h/2 < |xi| <= delta,
+// with h the lattice spacing (the partial-area rule of PDLAMMPS).
+#pragma once
+#include "pd/influence.hpp"
+#include "pd/lattice.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pd {
+
+enum class PartialVolume { none, pa_pdlammps };
+PartialVolume parse_partial_volume(const std::string& name);  // "none" | "pa-pdlammps"; throws otherwise
+
+struct Bonds {
+    double delta = 0;                 // horizon [m]
+    std::vector<std::int64_t> offset;  // family of i is [offset[i], offset[i+1])
+    std::vector<int> partner;         // j of bond k
+    std::vector<double> length;       // reference length |xi| [m]
+    std::vector<double> omega;        // influence omega(|xi|) [-]
+    std::vector<double> volume;       // beta V_j, partner volume seen from i [m^3]
+    std::vector<std::int64_t> reverse;  // index of bond j->i
+    std::vector<std::uint8_t> intact;   // 1 intact, 0 broken; empty when the scene has no damage
+
+    std::size_t nodes() const { return offset.empty() ? 0 : offset.size() - 1; }
+    std::size_t size() const { return partner.size(); }  // ordered pairs i->j
+    std::int64_t begin(std::size_t i) const { return offset[i]; }
+    std::int64_t end(std::size_t i) const { return offset[i + 1]; }
+    bool has_damage() const { return !intact.empty(); }
+    void enable_damage() { intact.assign(size(), 1); }
+};
+
+struct BondOptions {
+    Influence influence{};
+    PartialVolume partial_volume = PartialVolume::none;
+    // Optional filter: a bond i->j is created only when keep(i, j) is true (pre-cracks as cut
+    // bonds). It must be symmetric in i and j.
+    std::function<bool(int i, int j)> keep;
+};
+
+// Relative tolerance on |xi| <= delta: lattice coordinates are computed in floating point, so a
+// neighbour at exactly delta (e.g. delta = 3 dx) can come out an ulp beyond it.
+inline constexpr double horizon_roundoff = 1e-10;
+
+template <int D>
+Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt = {});
+
+}  // namespace pd

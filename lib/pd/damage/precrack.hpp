@@ -1,0 +1,39 @@
+// Pre-cracks as cut bonds: a bond filter (BondOptions::keep) that drops every bond whose
+// segment x_i - x_j crosses a crack: a segment in 2D, a planar rectangle in 3D.
+#pragma once
+#include "pd/lattice.hpp"
+
+#include <functional>
+
+namespace pd {
+
+// 2D: crack segment a-b. Proper crossing test with orientations (touching counts as crossing).
+inline std::function<bool(int, int)> cut_by_segment(const Body<2>& body, Vec<2> a, Vec<2> b)
+{
+    auto orient = [](const Vec<2>& p, const Vec<2>& q, const Vec<2>& r) {
+        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+    };
+    return [&body, a, b, orient](int i, int j) {
+        const Vec<2> p = body.x[i], q = body.x[j];
+        const double d1 = orient(a, b, p), d2 = orient(a, b, q), d3 = orient(p, q, a), d4 = orient(p, q, b);
+        const bool cross = ((d1 <= 0 && d2 >= 0) || (d1 >= 0 && d2 <= 0)) && ((d3 <= 0 && d4 >= 0) || (d3 >= 0 && d4 <= 0));
+        return !cross;
+    };
+}
+
+// 3D: rectangle {corner + s e1 + t e2, s, t in [0, 1]}.
+inline std::function<bool(int, int)> cut_by_rectangle(const Body<3>& body, Vec<3> corner, Vec<3> e1, Vec<3> e2)
+{
+    const Vec<3> n{{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]}};
+    return [&body, corner, e1, e2, n](int i, int j) {
+        const Vec<3> p = body.x[i], q = body.x[j];
+        const double dp = dot(p - corner, n), dq = dot(q - corner, n);
+        if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0) || dp == dq) return true;  // same side or parallel
+        const Vec<3> hit = p + (dp / (dp - dq)) * (q - p);
+        const Vec<3> r = hit - corner;
+        const double s = dot(r, e1) / dot(e1, e1), t = dot(r, e2) / dot(e2, e2);
+        return !(s >= 0 && s <= 1 && t >= 0 && t <= 1);
+    };
+}
+
+}  // namespace pd

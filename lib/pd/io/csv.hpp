@@ -1,0 +1,350 @@
+// pd/io/csv.hpp -- CSV output (writer, summary.csv) and a small CSV reader.
+//
+// Writer: CsvWriter creates the parent folders, writes the header, and writes each row as soon as
+// it is given, flushed by default, so that the rows written before a crash or abort survive.
+// Doubles are written with 17 significant digits (as printf "%.17g"), which reads back to the
+// same double bit for bit; integers as integers; text fields are quoted only when they contain a
+// comma, a quote, a line break or surrounding blanks (RFC 4180 quoting, "" for a quote).
+// Non-finite values are written `nan`, `inf`, `-inf`.
+//
+//     pd::io::CsvWriter csv(out / "history.csv", {"t_s", "u_m", "step"});
+//     csv.row({t, u, step});
+//
+// Summary (DESIGN.md, "CSV contract"): write_summary writes `quantity,value,reference,rel_error,
+// unit`, one row per headline result; an absent reference or error is written `nan`.
+//
+// Reader: read_csv returns the header and the rows as text with their line numbers (1-based), for
+// point clouds and tables. It tolerates CRLF line ends and blanks around fields, skips blank lines
+// and lines starting with '#', understands quoted fields (on one line), and rejects rows whose
+// field count differs from the header's. Errors throw std::runtime_error("<path>:<line>: ...").
+#pragma once
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <concepts>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace pd::io {
+
+// ---------------------------------------------------------------- number formatting and parsing
+
+namespace detail {
+inline std::string non_finite(double v) { return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"); }
+}  // namespace detail
+
+// 17 significant digits, as "%.17g" (locale independent): enough to read back the same double.
+inline std::string format_double(double v)
+{
+    if (!std::isfinite(v)) return detail::non_finite(v);
+    std::array<char, 64> buf{};
+    const int digits = 17;  // max_digits10 of IEEE double: round trip guaranteed
+    auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, digits);
+    return std::string(buf.data(), res.ptr);
+}
+
+// Shortest decimal form that reads back to the same double ("0.1" rather than "0.10000000000000001").
+inline std::string format_shortest(double v)
+{
+    if (!std::isfinite(v)) return detail::non_finite(v);
+    std::array<char, 64> buf{};
+    auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+    return std::string(buf.data(), res.ptr);
+}
+
+// Parses the whole of `text` as a double (a leading '+' is allowed, blanks are not).
+// Returns false if `text` is not exactly one number. Out-of-range values become +-inf or 0.
+inline bool parse_double(std::string_view text, double& out)
+{
+    if (!text.empty() && text.front() == '+') {
+        text.remove_prefix(1);
+        if (!text.empty() && text.front() == '-') return false;  // "+-1"
+    }
+    if (text.empty()) return false;
+    const char* end = text.data() + text.size();
+    const auto res = std::from_chars(text.data(), end, out);
+    if (res.ptr != end) return false;
+    if (res.ec == std::errc::result_out_of_range) {  // from_chars leaves `out` unset: strtod gives +-inf or 0
+        const std::string copy(text);
+        out = std::strtod(copy.c_str(), nullptr);
+        return true;
+    }
+    return res.ec == std::errc();
+}
+
+// Quotes a CSV field if it needs it (comma, quote, CR/LF, leading/trailing blank, leading '#').
+inline std::string csv_escape(std::string_view field)
+{
+    const bool blank_edge = !field.empty() && (field.front() == ' ' || field.front() == '\t' ||
+                                               field.back() == ' ' || field.back() == '\t');
+    const bool needs = blank_edge || field.find_first_of(",\"\r\n") != std::string_view::npos ||
+                       (!field.empty() && field.front() == '#');
+    if (!needs) return std::string(field);
+    std::string q = "\"";
+    for (char c : field) {
+        if (c == '"') q += '"';
+        q += c;
+    }
+    return q + '"';
+}
+
+// Creates the parent folder of `path` (and its parents); throws std::runtime_error on failure.
+inline void ensure_parent_dir(const std::filesystem::path& path)
+{
+    const auto dir = path.parent_path();
+    if (dir.empty()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw std::runtime_error("cannot create folder " + dir.string() + ": " + ec.message());
+}
+
+// ------------------------------------------------------------------------------------- writer
+
+// One CSV field: a number or a text, formatted on construction.
+class CsvCell {
+public:
+    CsvCell(double v) : text_(format_double(v)) {}
+    CsvCell(float v) : text_(format_double(v)) {}
+    template <std::integral T>
+    CsvCell(T v) : text_(std::to_string(v)) {}
+    CsvCell(const char* s) : text_(csv_escape(s)) {}
+    CsvCell(std::string_view s) : text_(csv_escape(s)) {}
+    CsvCell(const std::string& s) : text_(csv_escape(s)) {}
+    const std::string& text() const { return text_; }  // as written to the file
+
+private:
+    std::string text_;
+};
+
+class CsvWriter {
+public:
+    // Creates parent folders, opens (truncates) `path` and writes the header.
+    // flush_each_row = false buffers rows (faster for very long files); flush() then on demand.
+    CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+              bool flush_each_row = true)
+        : path_(path), columns_(std::move(columns)), flush_each_row_(flush_each_row)
+    {
+        if (columns_.empty()) throw std::invalid_argument("CsvWriter: no columns for " + path_.string());
+        ensure_parent_dir(path_);
+        out_.open(path_, std::ios::out | std::ios::trunc);
+        if (!out_) throw std::runtime_error("cannot open " + path_.string() + " for writing");
+        std::vector<CsvCell> head(columns_.begin(), columns_.end());
+        write_line(head.data(), head.size());
+    }
+
+    // Mixed row: csv.row({"f1_Hz", f, 1234, err}); numbers get 17 digits, integers stay integers.
+    void row(std::initializer_list<CsvCell> cells) { write_line(cells.begin(), cells.size()); }
+    void row(const std::vector<CsvCell>& cells) { write_line(cells.data(), cells.size()); }
+    void row(const std::vector<double>& values)
+    {
+        std::vector<CsvCell> cells(values.begin(), values.end());
+        write_line(cells.data(), cells.size());
+    }
+    void row_strings(const std::vector<std::string>& fields)
+    {
+        std::vector<CsvCell> cells(fields.begin(), fields.end());
+        write_line(cells.data(), cells.size());
+    }
+
+    void flush()
+    {
+        out_.flush();
+        if (!out_) throw std::runtime_error("write error on " + path_.string());
+    }
+
+    const std::filesystem::path& path() const { return path_; }
+    const std::vector<std::string>& columns() const { return columns_; }
+    std::size_t rows() const { return rows_; }  // data rows written (header excluded)
+
+private:
+    void write_line(const CsvCell* cells, std::size_t n)
+    {
+        if (n != columns_.size())
+            throw std::invalid_argument("CsvWriter: row of " + std::to_string(n) + " fields for " +
+                                        std::to_string(columns_.size()) + " columns in " + path_.string());
+        std::string line;
+        for (std::size_t k = 0; k < n; ++k) {
+            if (k) line += ',';
+            line += cells[k].text();
+        }
+        line += '\n';
+        out_ << line;
+        if (static_cast<bool>(out_) && has_header_) ++rows_;
+        has_header_ = true;
+        if (flush_each_row_) flush();
+        if (!out_) throw std::runtime_error("write error on " + path_.string());
+    }
+
+    std::filesystem::path path_;
+    std::vector<std::string> columns_;
+    bool flush_each_row_;
+    bool has_header_ = false;
+    std::size_t rows_ = 0;
+    std::ofstream out_;
+};
+
+// ------------------------------------------------------------------------------------ summary
+
+// One headline result of a case. reference / rel_error NaN = no reference available.
+struct SummaryRow {
+    std::string quantity;                                           // name, unit-suffixed (f1_Hz)
+    double value = std::numeric_limits<double>::quiet_NaN();        // ours [unit]
+    double reference = std::numeric_limits<double>::quiet_NaN();    // published / analytic [unit]
+    double rel_error = std::numeric_limits<double>::quiet_NaN();    // |value - reference| / |reference|
+    std::string unit;                                               // SI unit, "-" if none
+};
+
+// |value - reference| / |reference|; NaN when the reference is NaN or zero (undefined).
+inline double relative_error(double value, double reference)
+{
+    if (std::isnan(reference) || reference == 0.0) return std::numeric_limits<double>::quiet_NaN();
+    return std::abs(value - reference) / std::abs(reference);
+}
+
+// Writes summary.csv: header exactly `quantity,value,reference,rel_error,unit`.
+inline void write_summary(const std::filesystem::path& path, const std::vector<SummaryRow>& rows)
+{
+    CsvWriter csv(path, {"quantity", "value", "reference", "rel_error", "unit"});
+    for (const auto& r : rows) csv.row({r.quantity, r.value, r.reference, r.rel_error, r.unit});
+}
+
+// ------------------------------------------------------------------------------------- reader
+
+struct CsvRow {
+    long line = 0;                    // 1-based line number in the file
+    std::vector<std::string> fields;  // unquoted, blanks around unquoted fields removed
+};
+
+struct CsvTable {
+    std::filesystem::path path;
+    long header_line = 0;
+    std::vector<std::string> header;
+    std::vector<CsvRow> rows;
+
+    bool has_column(std::string_view name) const { return find(name) < header.size(); }
+    // Index of a column; throws std::runtime_error naming the file and the column if absent.
+    std::size_t column(std::string_view name) const
+    {
+        const std::size_t k = find(name);
+        if (k == header.size())
+            throw std::runtime_error(path.string() + ":" + std::to_string(header_line) +
+                                     ": no column '" + std::string(name) + "'");
+        return k;
+    }
+    // Field (row r, column c) as a double; throws std::runtime_error with file, line and column.
+    double number(std::size_t r, std::size_t c) const
+    {
+        double v = 0.0;
+        if (!parse_double(rows.at(r).fields.at(c), v))
+            throw std::runtime_error(path.string() + ":" + std::to_string(rows[r].line) + ": column '" +
+                                     header[c] + "': '" + rows[r].fields[c] + "' is not a number");
+        return v;
+    }
+    // A whole column as doubles.
+    std::vector<double> numbers(std::string_view name) const
+    {
+        const std::size_t c = column(name);
+        std::vector<double> v(rows.size());
+        for (std::size_t r = 0; r < rows.size(); ++r) v[r] = number(r, c);
+        return v;
+    }
+
+private:
+    std::size_t find(std::string_view name) const
+    {
+        std::size_t k = 0;
+        while (k < header.size() && header[k] != name) ++k;
+        return k;
+    }
+};
+
+namespace detail {
+
+inline std::string_view trim(std::string_view s)
+{
+    const auto b = s.find_first_not_of(" \t");
+    if (b == std::string_view::npos) return {};
+    const auto e = s.find_last_not_of(" \t");
+    return s.substr(b, e - b + 1);
+}
+
+// Splits one line into fields; returns false on an unterminated quote or text after a closing quote.
+inline bool split_csv_line(std::string_view line, std::vector<std::string>& fields)
+{
+    fields.clear();
+    std::size_t i = 0;
+    while (true) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+        std::string field;
+        if (i < line.size() && line[i] == '"') {
+            ++i;
+            bool closed = false;
+            while (i < line.size()) {
+                if (line[i] == '"') {
+                    if (i + 1 < line.size() && line[i + 1] == '"') { field += '"'; i += 2; continue; }
+                    closed = true;
+                    ++i;
+                    break;
+                }
+                field += line[i++];
+            }
+            if (!closed) return false;
+            while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+            if (i < line.size() && line[i] != ',') return false;
+        } else {
+            const auto comma = line.find(',', i);
+            const auto end = comma == std::string_view::npos ? line.size() : comma;
+            field = std::string(trim(line.substr(i, end - i)));
+            i = end;
+        }
+        fields.push_back(std::move(field));
+        if (i >= line.size()) return true;
+        ++i;  // skip the comma
+    }
+}
+
+}  // namespace detail
+
+// Reads a CSV file (see the file header for what is tolerated). Throws std::runtime_error.
+inline CsvTable read_csv(const std::filesystem::path& path)
+{
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot open " + path.string() + " for reading");
+    CsvTable t;
+    t.path = path;
+    std::string line;
+    std::vector<std::string> fields;
+    bool have_header = false;
+    for (long number = 1; std::getline(in, line); ++number) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const auto body = detail::trim(line);
+        if (body.empty() || body.front() == '#') continue;
+        const std::string where = path.string() + ":" + std::to_string(number) + ": ";
+        if (!detail::split_csv_line(line, fields))
+            throw std::runtime_error(where + "malformed quoted field");
+        if (!have_header) {
+            t.header = fields;
+            t.header_line = number;
+            have_header = true;
+            continue;
+        }
+        if (fields.size() != t.header.size())
+            throw std::runtime_error(where + "expected " + std::to_string(t.header.size()) +
+                                     " fields, found " + std::to_string(fields.size()));
+        t.rows.push_back({number, fields});
+    }
+    if (!have_header) throw std::runtime_error(path.string() + ": no header line");
+    return t;
+}
+
+}  // namespace pd::io

@@ -1,0 +1,77 @@
+// PMB, prototype microelastic brittle (Silling & Askari 2005; spec/000b sec. 1.1, spec/002 sec. 2.3).
+//   stretch s = (|Y| - |xi|)/|xi|;  pair force density f = c omega s V_j Y/|Y|  (both ends).
+//   micropotential w = c omega s^2 |xi| / 2;  W_i = 1/2 sum_j w V_j  (eq. 2.14 of spec/002).
+// Micromodulus by energy matching under isotropic stretch, W = (D^2/2) kappa_D s^2:
+//   c = 2 D^2 kappa_D / M1,  M1 = integral over the horizon of omega |xi| dV.
+// With omega = 1: 3D 18K/(pi delta^4); 2D 12 kappa/(pi delta^3 t) (plane stress, nu = 1/3:
+// 9E/(pi delta^3 t)); 1D 2E/(A delta^2). Calibration `lattice` replaces the continuum M1 by the
+// sum over a full lattice family (influence.hpp), so an interior node of a simple cubic lattice
+// reproduces W = (D^2/2) kappa_D s^2 exactly; `continuum` (default) is the published constant.
+#pragma once
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
+#include "pd/material.hpp"
+#include "pd/parallel.hpp"
+
+#include <vector>
+
+namespace pd {
+
+// c [N/m^6 in 3D] for a dimension-D bulk modulus kappa_D [Pa] and horizon moment M1 [m^4].
+inline double pmb_micromodulus(double kappa_D, int dim, double M1) { return 2.0 * dim * dim * kappa_D / M1; }
+
+struct PMB {
+    static constexpr bool has_point_pass = false;
+    struct Params {
+        Elastic material;              // only kappa_D enters (PMB fixes nu)
+        int dim = 3;
+        Plane plane = Plane::stress;   // 2D reduction
+        double measure = 1;            // 2D thickness [m] / 1D area [m^2]
+        enum class Calibration { continuum, lattice } calibration = Calibration::continuum;
+        double dx = 0;                 // lattice spacing for Calibration::lattice [m]
+    };
+    static double micromodulus(const Params& p, const Influence& w, double delta)
+    {
+        const double M1 = p.calibration == Params::Calibration::lattice
+                              ? lattice_moment(w, 1, delta, p.dx, p.dim, p.measure)
+                              : horizon_moment(w, 1, delta, p.dim, p.measure);
+        return pmb_micromodulus(kappa_dim(p.material, p.dim, p.plane), p.dim, M1);
+    }
+    double c = 0;                  // micromodulus (see header) [N/m^6 in 3D]
+    std::vector<double> coef;      // c omega beta V_j / |xi| per bond [N/m^4 in 3D]
+    const double* length = nullptr;  // |xi| of the bonds the model was built on [m]
+
+    PMB() = default;
+    PMB(const Params& p, const Influence& w, const Bonds& bonds)
+        : c(micromodulus(p, w, bonds.delta)),
+          coef(bonds.size()), length(bonds.length.data())
+    {
+        for (std::size_t k = 0; k < bonds.size(); ++k) coef[k] = c * bonds.omega[k] * bonds.volume[k] / bonds.length[k];
+    }
+
+    // c omega V s / |Y| with s = (|Y| - |xi|)/|xi|: force on i is this times Y.
+    double bond_scalar(std::size_t, std::int64_t k, int, double ylen) const
+    {
+        return coef[k] * (ylen - length[k]) / ylen;
+    }
+
+    // Strain energy density W_i = 1/4 sum_j c omega s^2 |xi| V_j [J/m^3] (intact bonds).
+    template <int D>
+    std::vector<double> energy_density(const Bonds& bonds, const Field<D>& y) const
+    {
+        std::vector<double> W(bonds.nodes(), 0.0);
+        parallel_for(bonds.nodes(), [&](std::size_t i) {
+            double sum = 0;
+            for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
+                if (bonds.has_damage() && !bonds.intact[k]) continue;
+                const double L = bonds.length[k];
+                const double s = (norm(y[bonds.partner[k]] - y[i]) - L) / L;
+                sum += 0.25 * coef[k] * L * L * s * s;
+            }
+            W[i] = sum;
+        });
+        return W;
+    }
+};
+
+}  // namespace pd

@@ -1,0 +1,182 @@
+// Explicit dynamics by velocity Verlet (spec/000a sec. 3.3.1), with kinematic boundary
+// conditions imposed on the half-step velocity (so positions follow), energy bookkeeping and a
+// stability guard.
+//   v_{n+1/2} = v_n + dt/2 a_n;  BCs on v_{n+1/2};  u_{n+1} = u_n + dt v_{n+1/2};
+//   a_{n+1} = (f(u_{n+1}) + b_{n+1}) / rho;  v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}.
+// Energies [J]: kinetic sum 1/2 rho v^2 V, strain sum W_i V_i, external work of body forces and
+// of the constraints (reaction times displacement increment, trapezoidal in time).
+// Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
+// (initial energy + |external work|), throws Unstable naming the step and the node.
+#pragma once
+#include "pd/bc/boundary.hpp"
+#include "pd/bond_loop.hpp"
+#include "pd/damage/critical_stretch.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace pd {
+
+struct Unstable : std::runtime_error {
+    long step;
+    int node;
+    Unstable(const std::string& what, long step, int node) : std::runtime_error(what), step(step), node(node) {}
+};
+
+struct Energies {
+    double kinetic = 0, strain = 0, external_work = 0;  // [J]
+    double total() const { return kinetic + strain - external_work; }
+};
+
+template <int D, class Model>
+class Explicit {
+public:
+    const Body<D>& body;
+    Bonds& bonds;
+    Model& model;
+    std::vector<double> rho;           // density per node [kg/m^3]
+    Boundary<D> boundary;
+    const CriticalStretch* damage = nullptr;  // null: no bond breaks
+    double energy_limit = 10;          // stability guard factor (see header)
+
+    Field<D> u, v, a;                  // displacement [m], velocity [m/s], acceleration [m/s^2]
+    double t = 0;                      // [s]
+    long step_count = 0;
+    long broken_bonds = 0;
+
+    Explicit(const Body<D>& body, Bonds& bonds, Model& model, double density)
+        : body(body), bonds(bonds), model(model), rho(body.size(), density),
+          u(body.size()), v(body.size()), a(body.size()), y_(body.size()), f_(body.size()), b_(body.size()),
+          f_prev_(body.size()), u_old_(body.size()), b_prev_(body.size())
+    {
+        if (!(density > 0)) throw std::invalid_argument("density rho must be positive");
+    }
+
+    // Call after initial u, v and the boundary are set: forces and accelerations at t.
+    void start()
+    {
+        constrained_.assign(body.size() * D, 0);
+        for (const auto& p : boundary.prescribed)
+            for (int i : p.nodes) constrained_[i * D + p.component] = 1;
+        evaluate();
+        const Energies e = energies();
+        initial_energy_ = e.kinetic + e.strain;
+    }
+
+    void step(double dt)
+    {
+        if (!(dt > 0)) throw std::invalid_argument("time step dt must be positive");
+        const std::size_t n = body.size();
+        for (int d = 0; d < D; ++d) u_old_.c[d] = u.c[d];  // for the external work
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < n; ++i) v.c[d][i] += 0.5 * dt * a.c[d][i];
+        for (const auto& p : boundary.prescribed)
+            for (int i : p.nodes) {
+                double& vh = v.c[p.component][i];
+                if (p.kind == Prescribed::Kind::velocity) vh = p.g(t + 0.5 * dt);
+                else vh = (p.g(t + dt) - u.c[p.component][i]) / dt;
+            }
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < n; ++i) u.c[d][i] += dt * v.c[d][i];
+        for (int d = 0; d < D; ++d) f_prev_.c[d] = f_.c[d];
+        for (int d = 0; d < D; ++d) b_prev_.c[d] = b_.c[d];
+        t += dt;
+        ++step_count;
+        evaluate();
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < n; ++i) {
+                if (constrained_[i * D + d]) continue;
+                v.c[d][i] += 0.5 * dt * a.c[d][i];
+            }
+        // External work: body forces on every node, reactions on constrained components.
+        double work = 0;
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < n; ++i) {
+                const double du = u.c[d][i] - u_old_.c[d][i];
+                const double b_mid = 0.5 * (b_.c[d][i] + b_prev_.c[d][i]);
+                double load = b_mid;
+                if (constrained_[i * D + d]) load = -0.5 * (f_.c[d][i] + f_prev_.c[d][i]);  // reaction density
+                work += load * du * body.volume[i];
+            }
+        external_work_ += work;
+        check_finite();
+    }
+
+    Energies energies()
+    {
+        Energies e;
+        const std::vector<double> W = model.energy_density(bonds, y_);
+        for (std::size_t i = 0; i < body.size(); ++i) {
+            double v2 = 0;
+            for (int d = 0; d < D; ++d) v2 += v.c[d][i] * v.c[d][i];
+            e.kinetic += 0.5 * rho[i] * v2 * body.volume[i];
+            e.strain += W[i] * body.volume[i];
+        }
+        e.external_work = external_work_;
+        return e;
+    }
+
+    // Energy check of the guard; call every k steps (costs one energy evaluation).
+    Energies check_energy()
+    {
+        const Energies e = energies();
+        const double mech = e.kinetic + e.strain;
+        const double bound = energy_limit * (initial_energy_ + std::abs(e.external_work)) + 1e-300;
+        if (!std::isfinite(mech) || mech > bound) {
+            std::ostringstream m;
+            m << "unstable at step " << step_count << " (t = " << t << " s): mechanical energy " << mech
+              << " J exceeds " << energy_limit << " x (initial + external work); fastest node " << fastest_node();
+            throw Unstable(m.str(), step_count, fastest_node());
+        }
+        return e;
+    }
+
+    const Field<D>& positions() const { return y_; }
+    const Field<D>& internal_force_density() const { return f_; }
+    double initial_energy() const { return initial_energy_; }
+
+private:
+    Field<D> y_, f_, b_, f_prev_, u_old_, b_prev_;
+    std::vector<std::uint8_t> constrained_;
+    double external_work_ = 0;
+    double initial_energy_ = 0;
+
+    void evaluate()
+    {
+        add_fields(body.x, u, y_);
+        if (damage) broken_bonds += damage->apply(bonds, y_);
+        internal_force(model, bonds, y_, f_);
+        boundary.external(t, b_);
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < body.size(); ++i)
+                a.c[d][i] = constrained_[i * D + d] ? 0.0 : (f_.c[d][i] + b_.c[d][i]) / rho[i];
+    }
+
+    int fastest_node() const
+    {
+        int best = 0;
+        double vmax = -1;
+        for (std::size_t i = 0; i < body.size(); ++i) {
+            double v2 = 0;
+            for (int d = 0; d < D; ++d) v2 += v.c[d][i] * v.c[d][i];
+            if (!std::isfinite(v2)) return static_cast<int>(i);
+            if (v2 > vmax) { vmax = v2; best = static_cast<int>(i); }
+        }
+        return best;
+    }
+
+    void check_finite() const
+    {
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < body.size(); ++i)
+                if (!std::isfinite(u.c[d][i]) || !std::isfinite(v.c[d][i])) {
+                    std::ostringstream m;
+                    m << "unstable at step " << step_count << " (t = " << t << " s): non-finite displacement or velocity at node " << i;
+                    throw Unstable(m.str(), step_count, static_cast<int>(i));
+                }
+    }
+};
+
+}  // namespace pd

@@ -1,0 +1,2 @@
+// placeholder, replaced by the pd_run helper
+int main() { return 0; }
