@@ -1,2 +1,320 @@
-// placeholder, replaced by the pd_run helper
-int main() { return 0; }
+// pd_run -- explicit dynamics of a user's point cloud (issue 2, "Users' own point clouds"), the CSV
+// counterpart of Peridigm's text-file discretisation. Not a verification case: it has no reference
+// and no --quick/--check; the physics it runs is verified by the tests of the library.
+// Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed] (pd/io/point_cloud.hpp).
+// Model PMB or LPS (single material; block ids are passed through to the VTU files only), bond
+// family |xi| <= delta, velocity Verlet (pd::Explicit), fixed points held at their initial
+// displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
+// c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14).
+// Run:    pd_run --input cloud.csv --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3 --steps 1000
+//         [--model pmb|lps] [--dim 1|2|3] [--output-steps 0,500,1000] [--vtu-every 100] [--help]
+// Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J),
+//         DIR/state_stepNNNN.csv (node_id,x,y,z,ux,uy,uz,vx,vy,vz), DIR/state_stepNNNN.vtu + state.pvd.
+// Exit status: 0 done; 2 invalid input (one line naming the option or file:line); 3 unstable run
+// (files written before the blow-up are kept). User page: reports/pd_run.md.
+#include "pd/io/csv.hpp"
+#include "pd/io/options.hpp"
+#include "pd/io/point_cloud.hpp"
+#include "pd/io/timer.hpp"
+#include "pd/io/vtu.hpp"
+#include "pd/models/lps.hpp"
+#include "pd/models/pmb.hpp"
+#include "pd/time/critical_step.hpp"
+#include "pd/time/verlet.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <memory>
+
+namespace {
+
+constexpr const char* program = "pd_run";
+constexpr double dt_safety = 0.5;  // Silling & Askari's normal safety factor (spec/000a sec. 3.3.2)
+
+struct Run {
+    std::string model;
+    pd::Elastic material;
+    pd::Plane plane = pd::Plane::stress;
+    double measure = 1, rho = 0, delta = 0, dx = 0;  // [m^(3-D)], [kg/m^3], [m], [m] (0: no lattice)
+    pd::Influence influence;
+    pd::PartialVolume partial_volume = pd::PartialVolume::none;
+    double dt = 0;                                     // [s]; NaN = automatic
+    long steps = 0, energy_every = 1, vtu_every = 0;
+    std::vector<long> output_steps;                    // sorted, unique
+    std::filesystem::path out;
+};
+
+[[noreturn]] void fail(const std::string& msg) { pd::io::fail_input(program, msg); }
+
+// "0,100,400" -> sorted unique steps in [0, steps]; "" -> {steps}; "none" -> {}.
+std::vector<long> parse_steps(const std::string& text, long steps)
+{
+    if (text == "none") return {};
+    if (text.empty()) return {steps};
+    std::vector<long> list;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', begin), text.size());
+        const std::string item = text.substr(begin, comma - begin);
+        long s = 0;
+        const auto r = std::from_chars(item.data(), item.data() + item.size(), s);
+        if (item.empty() || r.ec != std::errc() || r.ptr != item.data() + item.size())
+            fail("option --output-steps expects step numbers separated by commas, got '" + text + "'");
+        if (s < 0) fail("option --output-steps: step " + item + " is negative");
+        if (s > steps) fail("option --output-steps: step " + item + " is beyond --steps " + std::to_string(steps));
+        list.push_back(s);
+        begin = comma + 1;
+    }
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    return list;
+}
+
+std::filesystem::path step_file(const Run& cfg, long n, const char* ext)
+{
+    char name[64];
+    std::snprintf(name, sizeof name, "state_step%04ld.%s", n, ext);
+    return cfg.out / name;
+}
+
+// State at step n: reference x,y,z as read (dims beyond D too), u and v (0 beyond D), 17 digits.
+template <int D, class Sim>
+void write_state(const Run& cfg, long n, const pd::io::PointCloud& pc, const Sim& sim)
+{
+    pd::io::CsvWriter csv(step_file(cfg, n, "csv"), {"node_id", "x", "y", "z", "ux", "uy", "uz", "vx", "vy", "vz"}, false);
+    for (std::size_t i = 0; i < pc.size(); ++i) {
+        std::vector<pd::io::CsvCell> row{i, pc.x[0][i], pc.x[1][i], pc.x[2][i]};
+        for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? sim.u.c[d][i] : 0.0);
+        for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? sim.v.c[d][i] : 0.0);
+        csv.row(row);
+    }
+    csv.flush();
+}
+
+template <int D, class Sim>
+void write_vtu(const Run& cfg, long n, const pd::io::PointCloud& pc, const Sim& sim, pd::io::PvdWriter& pvd)
+{
+    const std::vector<double> zero;  // components beyond D: padded with zeros by the writer
+    auto comp = [&](const pd::Field<D>& f, int d) -> const std::vector<double>& { return d < D ? f.c[d] : zero; };
+    pd::io::VtuWriter w(step_file(cfg, n, "vtu"));
+    w.points(pc.x[0], pc.x[1], pc.x[2]);
+    w.vector("displacement_m", comp(sim.u, 0), comp(sim.u, 1), comp(sim.u, 2));
+    w.vector("velocity_m_per_s", comp(sim.v, 0), comp(sim.v, 1), comp(sim.v, 2));
+    w.scalar("block", std::vector<double>(pc.block.begin(), pc.block.end()));
+    w.scalar("fixed", std::vector<double>(pc.fixed.begin(), pc.fixed.end()));
+    w.time(sim.t);
+    w.write();
+    pvd.add(sim.t, w.path());
+}
+
+// 4.-5. Initial and boundary conditions, integration and output. Returns the exit status.
+template <int D, class Model>
+int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& body, pd::Bonds& bonds, Model& model)
+{
+    pd::Explicit<D, Model> sim(body, bonds, model, cfg.rho);
+    pd::NodeSet held;  // fixed points with zero initial displacement; the others hold their own u0
+    for (std::size_t i = 0; i < pc.size(); ++i) {
+        bool moved = false;
+        for (int d = 0; d < D; ++d) {
+            sim.u.c[d][i] = pc.u[d][i];
+            sim.v.c[d][i] = pc.v[d][i];
+            moved = moved || pc.u[d][i] != 0;
+        }
+        if (!pc.fixed[i]) continue;
+        if (!moved) held.push_back(static_cast<int>(i));
+        else
+            for (int d = 0; d < D; ++d)
+                sim.boundary.prescribe({pd::Prescribed::Kind::displacement, {static_cast<int>(i)}, d,
+                                        pd::TimeFunction::constant(pc.u[d][i])});
+    }
+    if (!held.empty()) sim.boundary.fix(held);
+    sim.start();
+
+    pd::io::CsvWriter energy(cfg.out / "energy.csv", {"step", "t_s", "kinetic_J", "strain_J", "external_work_J", "total_J"});
+    std::unique_ptr<pd::io::PvdWriter> pvd;
+    if (cfg.vtu_every > 0) pvd = std::make_unique<pd::io::PvdWriter>(cfg.out / "state.pvd");
+    pd::Energies last;
+    auto output = [&](long n) {  // energy rows every k steps and at the end; states on request
+        const bool e_step = n % cfg.energy_every == 0 || n == cfg.steps;
+        const bool s_step = std::binary_search(cfg.output_steps.begin(), cfg.output_steps.end(), n);
+        const bool v_step = cfg.vtu_every > 0 && (n % cfg.vtu_every == 0 || n == cfg.steps);
+        if (!(e_step || s_step || v_step)) return;
+        last = sim.check_energy();  // throws pd::Unstable before a blown-up state is written
+        if (e_step) energy.row({n, sim.t, last.kinetic, last.strain, last.external_work, last.total()});
+        if (s_step) write_state<D>(cfg, n, pc, sim);
+        if (v_step) write_vtu<D>(cfg, n, pc, sim, *pvd);
+    };
+
+    pd::io::Timer timer;
+    pd::io::Progress progress(program, cfg.steps, true);
+    try {
+        output(0);
+        for (long n = 1; n <= cfg.steps; ++n) {
+            sim.step(cfg.dt);
+            output(n);
+            progress.update(n);
+        }
+    } catch (const pd::Unstable& e) {
+        progress.finish();
+        std::cerr << program << ": " << e.what() << std::endl;
+        return 3;
+    }
+    progress.finish();
+    const double wall = timer.seconds();
+    std::printf("\n  step %ld  t = %.6g s  kinetic %.6g J  strain %.6g J  external work %.6g J  total %.6g J\n",
+                cfg.steps, sim.t, last.kinetic, last.strain, last.external_work, last.total());
+    std::printf("%s: done, %ld steps in %.3g s; wrote %s\n", program, cfg.steps, wall, cfg.out.string().c_str());
+    return 0;
+}
+
+// 2.-3. Discretisation, bonds, time step and model for dimension D.
+template <int D>
+int run(Run cfg, const pd::io::PointCloud& pc)
+{
+    pd::Body<D> body;
+    body.dx = cfg.dx;
+    body.measure = cfg.measure;
+    for (std::size_t i = 0; i < pc.size(); ++i) {
+        pd::Vec<D> p;
+        for (int d = 0; d < D; ++d) p[d] = pc.x[d][i];
+        body.push(p, pc.volume[i]);
+    }
+    pd::BondOptions family;
+    family.influence = cfg.influence;
+    family.partial_volume = cfg.partial_volume;
+    pd::Bonds bonds = pd::build_bonds(body, cfg.delta, family);
+    long isolated = 0;
+    for (std::size_t i = 0; i < body.size(); ++i) isolated += bonds.begin(i) == bonds.end(i);
+    std::printf("points %zu, bonds %zu (ordered pairs), blocks %ld, fixed %ld, isolated %ld\n", body.size(),
+                bonds.size(), pc.blocks(), pc.fixed_count(), isolated);
+    if (pc.blocks() > 1) std::printf("note: %ld blocks share one material (per-block materials come later)\n", pc.blocks());
+
+    // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too); the library
+    // sums c V_j / |xi|, so omega is folded into V_j of a copy that holds only what it reads.
+    const pd::PMB::Params pmb{.material = cfg.material, .dim = D, .plane = cfg.plane, .measure = cfg.measure};
+    const double c = pd::PMB::micromodulus(pmb, cfg.influence, cfg.delta);
+    pd::Bonds springs;
+    springs.offset = bonds.offset;
+    springs.length = bonds.length;
+    springs.volume = bonds.volume;
+    for (std::size_t k = 0; k < bonds.size(); ++k) springs.volume[k] *= bonds.omega[k];
+    const pd::CriticalStep crit = pd::critical_step_silling_askari(springs, std::vector<double>(body.size(), cfg.rho), c);
+    if (std::isnan(cfg.dt)) {
+        if (!std::isfinite(crit.dt)) fail("option --dt is required: no point has a bond within --delta");
+        cfg.dt = dt_safety * crit.dt;
+        std::printf("dt = %.17g s (%.2g x Silling-Askari critical step %.6g s at node %d)\n", cfg.dt, dt_safety, crit.dt, crit.node);
+    } else {
+        std::printf("dt = %.17g s (given; Silling-Askari critical step %.6g s, ratio %.3g)\n", cfg.dt, crit.dt, cfg.dt / crit.dt);
+        if (cfg.dt > crit.dt) std::printf("warning: --dt exceeds the Silling-Askari critical step; the run may go unstable\n");
+    }
+    std::fflush(stdout);
+
+    if (cfg.model == "pmb") {
+        pd::PMB model(pmb, cfg.influence, bonds);
+        return integrate<D>(cfg, pc, body, bonds, model);
+    }
+    pd::LPS model({.material = cfg.material, .dim = D, .plane = cfg.plane}, bonds);
+    return integrate<D>(cfg, pc, body, bonds, model);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    // 1. Options (SI), cross-checks, echo and params.csv.
+    const double automatic = std::numeric_limits<double>::quiet_NaN();
+    pd::io::Options opt(program, "Explicit dynamics (velocity Verlet) of a point cloud read from CSV; see reports/pd_run.md.");
+    const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed]");
+    const std::string& model = opt.add_string("model", "pmb", "material model", {"pmb", "lps"});
+    const int& dim = opt.add_int("dim", 3, "dimension (x, then y, then z are used)");
+    const double& K = opt.add("K", automatic, "bulk modulus, with --G (or give --E --nu)", "Pa");
+    const double& G = opt.add("G", automatic, "shear modulus, with --K", "Pa");
+    const double& E = opt.add("E", automatic, "Young's modulus, with --nu (or give --K --G)", "Pa");
+    const double& nu = opt.add("nu", automatic, "Poisson's ratio, with --E (optional and unused in 1D)");
+    const double& rho = opt.add("rho", automatic, "density (required)", "kg/m^3");
+    const double& delta = opt.add("delta", automatic, "horizon: bonds with |xi| <= delta (required)", "m");
+    const std::string& influence = opt.add_string("influence", "one", "influence function omega", {"one", "inv_xi", "triangular"});
+    const std::string& pv = opt.add_string("partial-volume", "none", "partial volumes of boundary bonds", {"none", "pa-pdlammps"});
+    const double& dx = opt.add("dx", automatic, "lattice spacing of the cloud (required by pa-pdlammps)", "m");
+    const std::string& plane = opt.add_string("plane", "stress", "2D reduction (dim 2 only)", {"stress", "strain"});
+    const double& thickness = opt.add("thickness", 1.0, "2D thickness implied by the volumes (dim 2 only)", "m");
+    const double& area = opt.add("area", 1.0, "1D cross-section implied by the volumes (dim 1 only)", "m^2");
+    const double& dt = opt.add("dt", automatic, "time step (default 0.5 x Silling-Askari critical step)", "s");
+    const int& steps = opt.add_int("steps", 1000, "number of time steps");
+    const std::string& out_steps = opt.add_string("output-steps", "", "steps written as state_stepNNNN.csv, e.g. 0,100,400 (default: last step; none: no state)");
+    const int& energy_every = opt.add_int("energy-every", 10, "energy.csv row every k steps (and at the last step)");
+    const int& vtu_every = opt.add_int("vtu-every", 0, "VTU snapshot every k steps and at the last step (0 = off)");
+    const std::string& out = opt.add_string("out", "pd_run_out", "output folder");
+    const int& threads = opt.add_int("threads", 0, "OpenMP threads (0 = OpenMP default)");
+    for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt"}) opt.require_positive(name);
+    opt.require_range("dim", 1, 3);
+    opt.require_at_least("steps", 0);
+    opt.require_at_least("energy-every", 1);
+    opt.require_at_least("vtu-every", 0);
+    opt.require_at_least("threads", 0);
+    opt.parse(argc, argv);
+
+    for (const char* name : {"input", "rho", "delta"})
+        if (!opt.given(name)) fail(std::string("option --") + name + " is required (see --help)");
+    if (opt.given("plane") && dim != 2) fail("option --plane applies to --dim 2 only");
+    if (opt.given("thickness") && dim != 2) fail("option --thickness applies to --dim 2 only");
+    if (opt.given("area") && dim != 1) fail("option --area applies to --dim 1 only");
+    if (pv == "pa-pdlammps" && !opt.given("dx")) fail("option --partial-volume pa-pdlammps needs --dx (the lattice spacing)");
+
+    Run cfg;
+    cfg.plane = plane == "strain" ? pd::Plane::strain : pd::Plane::stress;
+    const bool kg = opt.given("K") || opt.given("G"), enu = opt.given("E") || opt.given("nu");
+    if (kg && enu) fail("give the elastic constants as --K --G or as --E --nu, not both pairs");
+    if (!kg && !enu) fail("elastic constants missing: give --E and --nu, or --K and --G");
+    if (kg && !opt.given("K")) fail("option --G needs --K");
+    if (kg && !opt.given("G")) fail("option --K needs --G");
+    if (enu && !opt.given("E")) fail("option --nu needs --E");
+    if (enu && !opt.given("nu") && dim != 1) fail("option --E needs --nu in " + std::to_string(dim) + "D");
+    if (kg) cfg.material = {K, G};
+    else {
+        const std::string msg = pd::validate_elastic(E, dim == 1 ? 0.0 : nu, dim, cfg.plane);
+        if (!msg.empty()) fail("option --" + msg);
+        cfg.material = pd::Elastic::from_E_nu(E, dim == 1 ? 0.0 : nu);  // 1D: only E enters
+    }
+    cfg.model = model;
+    cfg.measure = dim == 2 ? thickness : dim == 1 ? area : 1.0;
+    cfg.rho = rho;
+    cfg.delta = delta;
+    cfg.dx = opt.given("dx") ? dx : 0.0;
+    cfg.influence = pd::Influence::parse(influence);
+    cfg.partial_volume = pd::parse_partial_volume(pv);
+    cfg.dt = dt;
+    cfg.steps = steps;
+    cfg.energy_every = energy_every;
+    cfg.vtu_every = vtu_every;
+    cfg.output_steps = parse_steps(out_steps, steps);
+    cfg.out = out;
+    pd::set_threads(threads);
+
+    std::cout << program << ": options\n";
+    opt.echo(std::cout);
+    try {
+        opt.save_csv(cfg.out / "params.csv");
+    } catch (const std::exception& e) {
+        fail("option --out: " + std::string(e.what()));
+    }
+
+    pd::io::PointCloud pc;
+    try {
+        pc = pd::io::read_point_cloud(input, dim);
+    } catch (const pd::io::PointCloudError& e) {
+        fail(e.what());
+    }
+    try {
+        if (dim == 1) return run<1>(cfg, pc);
+        if (dim == 2) return run<2>(cfg, pc);
+        return run<3>(cfg, pc);
+    } catch (const std::exception& e) {  // e.g. a write error in the output folder
+        std::cerr << program << ": " << e.what() << std::endl;
+        return 1;
+    }
+}

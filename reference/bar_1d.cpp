@@ -304,7 +304,7 @@ double fe_bar_frequency(int N, double E, double rho, double l)
     solver.computeFromTridiagonal(diag, sub, Eigen::EigenvaluesOnly);
     if (solver.info() != Eigen::Success)
         throw std::runtime_error("pd::ref fe_bar_frequency: eigen solver failed");
-    return std::sqrt(solver.eigenvalues().minCoeff()) / (2.0 * pi);  // [Hz]
+    return std::sqrt(solver.eigenvalues()[0]) / (2.0 * pi);  // ascending order: lowest first [Hz]
 }
 
 // ---------------------------------------------------------------------------------------------

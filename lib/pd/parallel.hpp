@@ -5,11 +5,15 @@
 
 namespace pd {
 
+// Below this many nodes a loop runs serially: a parallel region costs microseconds (far more on
+// an oversubscribed machine), more than a small 1D scene's whole step.
+inline constexpr long parallel_min_nodes = 2048;
+
 template <class Fn>
 inline void parallel_for(std::size_t n, Fn&& fn)
 {
     const long nn = static_cast<long>(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nn >= parallel_min_nodes)
     for (long i = 0; i < nn; ++i) fn(static_cast<std::size_t>(i));
 }
 

@@ -4,7 +4,8 @@
 //   v_{n+1/2} = v_n + dt/2 a_n;  BCs on v_{n+1/2};  u_{n+1} = u_n + dt v_{n+1/2};
 //   a_{n+1} = (f(u_{n+1}) + b_{n+1}) / rho;  v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}.
 // Energies [J]: kinetic sum 1/2 rho v^2 V, strain sum W_i V_i, external work of body forces and
-// of the constraints (reaction times displacement increment, trapezoidal in time).
+// of the constraints (reaction -f times displacement increment, trapezoidal in time; the
+// inertia of a constrained node is not counted as external work).
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
 // (initial energy + |external work|), throws Unstable naming the step and the node.
 #pragma once
