@@ -193,16 +193,10 @@ int run(Run cfg, const pd::io::PointCloud& pc)
                 bonds.size(), pc.blocks(), pc.fixed_count(), isolated);
     if (pc.blocks() > 1) std::printf("note: %ld blocks share one material (per-block materials come later)\n", pc.blocks());
 
-    // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too); the library
-    // sums c V_j / |xi|, so omega is folded into V_j of a copy that holds only what it reads.
+    // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too).
     const pd::PMB::Params pmb{.material = cfg.material, .dim = D, .plane = cfg.plane, .measure = cfg.measure};
     const double c = pd::PMB::micromodulus(pmb, cfg.influence, cfg.delta);
-    pd::Bonds springs;
-    springs.offset = bonds.offset;
-    springs.length = bonds.length;
-    springs.volume = bonds.volume;
-    for (std::size_t k = 0; k < bonds.size(); ++k) springs.volume[k] *= bonds.omega[k];
-    const pd::CriticalStep crit = pd::critical_step_silling_askari(springs, std::vector<double>(body.size(), cfg.rho), c);
+    const pd::CriticalStep crit = pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), cfg.rho), c);
     if (std::isnan(cfg.dt)) {
         if (!std::isfinite(crit.dt)) fail("option --dt is required: no point has a bond within --delta");
         cfg.dt = dt_safety * crit.dt;
@@ -268,7 +262,7 @@ int main(int argc, char** argv)
     Run cfg;
     cfg.plane = plane == "strain" ? pd::Plane::strain : pd::Plane::stress;
     const bool kg = opt.given("K") || opt.given("G"), enu = opt.given("E") || opt.given("nu");
-    if (kg && enu) fail("give the elastic constants as --K --G or as --E --nu, not both pairs");
+    if (kg && enu) fail("give the elastic constants as --K --G or as --E --nu (not both pairs, not mixed)");
     if (!kg && !enu) fail("elastic constants missing: give --E and --nu, or --K and --G");
     if (kg && !opt.given("K")) fail("option --G needs --K");
     if (kg && !opt.given("G")) fail("option --K needs --G");

@@ -222,8 +222,10 @@ TEST(ReferenceBar, FeTipWithinDiscretisationErrorOfTriangle)
     double sup = 0.0;
     for (std::size_t i = 0; i < tri.size(); ++i) sup = std::max(sup, std::abs(cv.tip_m[i] - tri[i]));
     EXPECT_LT(sup, bound + 1e-7 * eps0 * l);  // bound = 3.08e-2 eps0 l; measured 1.50e-2
-    // Integral error E1 over 2 T1 (spec 5.1 metric): 1.16e-3 for N = 200. Its order in dx is 4/3
-    // (L1 of the Airy-smeared kinks: width^2 ~ dx^(4/3)); pre-asymptotic observed 1.26-1.30.
+    // Integral error E1 over 2 T1 (spec 5.1 metric), N = 200: 1.25e-3 (CVODE, 400 samples),
+    // 1.16e-3 (exact FE modes, 800 samples); the 2e-3 cap is the 4/3-order trend below applied
+    // to N = 100 (2.86e-3 / 2^(4/3) = 1.13e-3) with sampling margin. The order in dx is 4/3
+    // (L1 of the Airy-smeared kinks: width^2 ~ dx^(4/3)); observed 1.26-1.30 (pre-asymptotic).
     const std::vector<int> nodes{50, 100, 200};
     std::vector<double> e1;
     for (int n_nodes : nodes) {

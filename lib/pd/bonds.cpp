@@ -27,7 +27,10 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     if (opt.partial_volume == PartialVolume::pa_pdlammps && !(body.dx > 0))
         throw std::invalid_argument("pa-pdlammps partial volumes need a lattice spacing (dx > 0)");
 
-    // 1. Cell lists: cells of side delta over the bounding box, nodes sorted by cell.
+    // 1. Cell lists: cells of side a little above the search reach over the bounding box, nodes
+    // sorted by cell. With side exactly delta, lattice points at exactly delta (integer m) sit on
+    // cell faces and round-off in (x - lo)/side can put two neighbours two cells apart (bond lost).
+    const double cell = delta * (1 + 1e-6);  // 1e-6 >> horizon_roundoff and index round-off
     Vec<D> lo, hi;
     for (int d = 0; d < D; ++d) {
         lo[d] = *std::min_element(body.x.c[d].begin(), body.x.c[d].end());
@@ -36,11 +39,11 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     std::array<long, D> nc{};
     long ncell = 1;
     for (int d = 0; d < D; ++d) {
-        nc[d] = std::max(1L, static_cast<long>((hi[d] - lo[d]) / delta) + 1);
+        nc[d] = std::max(1L, static_cast<long>((hi[d] - lo[d]) / cell) + 1);
         ncell *= nc[d];
     }
     auto cell_coord = [&](std::size_t i, int d) {
-        return std::min(nc[d] - 1, static_cast<long>((body.x.c[d][i] - lo[d]) / delta));
+        return std::min(nc[d] - 1, static_cast<long>((body.x.c[d][i] - lo[d]) / cell));
     };
     std::vector<long> cell_start(ncell + 1, 0), cell_of(n);
     for (std::size_t i = 0; i < n; ++i) {

@@ -1,6 +1,6 @@
 // Critical time steps of explicit central differences / velocity Verlet (spec/000a sec. 3.3.2).
 //   Silling-Askari (3.14), per node, with the PMB spring constant per unit displacement c/|xi|:
-//       dt_i = sqrt(2 rho_i / sum_j V_j c / |xi_ij|),  dt_crit = min_i dt_i
+//       dt_i = sqrt(2 rho_i / sum_j omega V_j c / |xi_ij|),  dt_crit = min_i dt_i
 //   (Peridigm's form; in 1D it is (3.13) bounded with 1 - cos <= 2). c is the micromodulus of
 //   the dimension (models/pmb.hpp); for other models it is the usual stand-in (sec. 1.9, 000b).
 //   CFL (3.15): dt = h / c_wave, conservative with h = dx, unconservative with h = delta.
@@ -23,8 +23,8 @@ inline CriticalStep critical_step_silling_askari(const Bonds& b, const std::vect
 {
     CriticalStep r{std::numeric_limits<double>::infinity(), -1};
     for (std::size_t i = 0; i < b.nodes(); ++i) {
-        double stiffness = 0;  // sum_j V_j c / |xi| [N/m^3 / m / kg... = kg/(m^3 s^2)]
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) stiffness += b.volume[k] * c / b.length[k];
+        double stiffness = 0;  // sum_j omega V_j c / |xi|: force density per displacement [N/m^4]
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) stiffness += b.omega[k] * b.volume[k] * c / b.length[k];
         if (stiffness <= 0) continue;
         const double dt = std::sqrt(2 * rho[i] / stiffness);
         if (dt < r.dt) r = {dt, static_cast<int>(i)};
