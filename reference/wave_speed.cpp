@@ -176,4 +176,21 @@ double mean_omega2(const LongitudinalDispersion& disp, double pulse_width)
     return spectral_mean(disp, pulse_width, [&](double k) { return disp.omega2(k); });
 }
 
+double least_squares_slope(const std::vector<double>& t, const std::vector<double>& y, double t0)
+{
+    require(t.size() == y.size(), "t and y must have the same length");
+    double n = 0, st = 0, sy = 0, stt = 0, sty = 0;
+    for (std::size_t k = 0; k < t.size(); ++k)
+        if (t[k] >= t0) n += 1, st += t[k], sy += y[k], stt += t[k] * t[k], sty += t[k] * y[k];
+    if (n < 2) return std::numeric_limits<double>::quiet_NaN();
+    return (n * sty - st * sy) / (n * stt - st * st);
+}
+
+double max_relative_deviation(const std::vector<double>& s)
+{
+    double m = 0;
+    for (double x : s) m = std::max(m, std::abs(x / s.front() - 1));
+    return m;
+}
+
 }  // namespace pd::ref

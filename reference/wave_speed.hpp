@@ -69,4 +69,9 @@ private:
 double mean_group_velocity(const LongitudinalDispersion& disp, double pulse_width, double dt = 0);
 double mean_omega2(const LongitudinalDispersion& disp, double pulse_width);
 
+// Measurement helpers for sampled histories. Least-squares slope dy/dt over the samples with
+// t >= t0 (NaN if fewer than two), and the largest relative deviation max_n |s_n / s_0 - 1|.
+double least_squares_slope(const std::vector<double>& t, const std::vector<double>& y, double t0);
+double max_relative_deviation(const std::vector<double>& s);
+
 }  // namespace pd::ref

@@ -138,3 +138,26 @@ TEST(Lattice, InvalidInputThrows)
     dup.push({{0, 0}}, 1);
     EXPECT_THROW(build_bonds(dup, 1.0), std::invalid_argument);
 }
+
+// Regression: with integer m, neighbours at exactly delta sit on cell faces of the search grid;
+// round-off once put some two cells apart and dropped them. Every interior node of a long bar
+// must have the full 122 (hand count, spec/000b V12).
+TEST(Bonds, EveryInteriorFamilyIsCompleteOnLongBars)
+{
+    const double dx = 2e-3;
+    auto body = box<3>({{0, 0, 0}}, {{0.3, 14 * dx, 14 * dx}}, dx);
+    const Bonds b = build_bonds(body, 3 * dx);
+    long interior = 0;
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        const Vec<3> p = body.x[i];
+        bool inside = true;
+        for (int d = 0; d < 3; ++d) {
+            const double hi = d == 0 ? 0.3 : 14 * dx;
+            inside = inside && p[d] > 3 * dx && p[d] < hi - 3 * dx;
+        }
+        if (!inside) continue;
+        ++interior;
+        ASSERT_EQ(b.end(i) - b.begin(i), 122) << "node " << i;
+    }
+    EXPECT_GT(interior, 1000);
+}
