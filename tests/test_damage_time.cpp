@@ -24,7 +24,13 @@ TEST(Damage, CriticalStretchConstants)
     const Elastic si3n4 = Elastic::from_E_nu(310e9, 0.29);
     EXPECT_NEAR(s0_pmb_3d(109.94, si3n4.K, 0.75e-3) / 5.753e-4, 1.0, 2e-4);
     EXPECT_NEAR(s0_madenci_oterkus_3d(109.94, si3n4, 0.75e-3) / 6.253e-4, 1.0, 2e-4);
-    EXPECT_NEAR(s0_madenci_oterkus_2d(109.94, si3n4, 0.75e-3) / 7.975e-4, 1.0, 2e-4);
+    // MO 2D: the thesis's 7.975e-4 uses the 3D K (see critical_stretch.hpp); with the in-plane
+    // kappa it must reduce to PMB 2D where PMB is exact: nu = 1/3 plane stress, 1/4 plane strain.
+    const Elastic third = Elastic::from_E_nu(72e9, 1.0 / 3), quarter = Elastic::from_E_nu(72e9, 0.25);
+    EXPECT_NEAR(s0_madenci_oterkus_2d(135, third, 3e-3, Plane::stress) / s0_pmb(135, 72e9, 3e-3, 2, Plane::stress), 1.0, 1e-12);
+    EXPECT_NEAR(s0_madenci_oterkus_2d(135, quarter, 3e-3, Plane::strain) / s0_pmb(135, 72e9, 3e-3, 2, Plane::strain), 1.0, 1e-12);
+    const Elastic basalt_like = Elastic::from_E_nu(70e9, 0.25);
+    EXPECT_NEAR(s0_madenci_oterkus_3d(53.57, basalt_like, 1e-3) / s0_pmb(53.57, 70e9, 1e-3, 3, Plane::strain), 1.0, 1e-12);
     const Elastic basalt = Elastic::from_E_nu(70e9, 0.25);
     EXPECT_NEAR(s0_pmb_3d(53.57, basalt.K, 1e-3) / 7.986e-4, 1.0, 2e-4);
     EXPECT_NEAR(s0_madenci_oterkus_3d(53.57, basalt, 1e-3) / 7.986e-4, 1.0, 2e-4);
@@ -160,7 +166,11 @@ TEST(Boundary, PrescribedMotionAndTimeFunctions)
     EXPECT_NEAR(osc.run.u.c[0][1], 1e-3, 1e-15);
     // Work done = strain energy stored (quasi-static spring): 1/2 k u^2 with k = c V V = 1.
     const Energies e = osc.run.energies();
-    EXPECT_NEAR(e.external_work, e.strain, 0.05 * e.strain);  // reaction work excludes the constrained node's inertia
+    // Work of the constraint = strain energy (quasi-static spring, 1/2 k u^2, k = c V V = 1) plus
+    // the kinetic energy it gave the driven node (1/2 rho V v^2); O(dt^2) from the trapezoid.
+    EXPECT_NEAR(e.external_work, 0.5 * 1e-6 + 0.5 * 1e-6, 0.05 * 0.5e-6);
+    EXPECT_NEAR(e.total(), 0.0, 0.05 * 0.5e-6);
+    EXPECT_DOUBLE_EQ(osc.run.v.c[0][1], 1e-3);
     Boundary<1> bc;
     EXPECT_THROW(bc.fix({}), std::invalid_argument);
     EXPECT_THROW(bc.prescribe({Prescribed::Kind::velocity, {0}, 1, TimeFunction::constant(0)}), std::invalid_argument);

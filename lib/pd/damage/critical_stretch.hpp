@@ -6,7 +6,11 @@
 //   PMB 3D, E     s0 = sqrt(5 Gc / (6 E delta))   (nu = 1/4)          (spec/002 eq. 2.15a)
 //   PMB 2D stress s0 = sqrt(4 pi Gc / (9 E delta))                   (spec/002 eq. 2.15b)
 //   PMB 2D strain s0 = sqrt(5 pi Gc / (12 E delta))                  (spec/002 eq. 2.15c)
-//   MO 2D  s0 = sqrt(Gc / ((6/pi) G + 16/(9 pi^2) (K - 2G)) / delta)  (Madenci-Oterkus; 000c eq. 8.10)
+//   MO 2D  s0 = sqrt(Gc / ((6/pi) G + 16/(9 pi^2) (kappa - 2G)) / delta)  (Madenci-Oterkus; 000c eq. 8.10)
+//          with kappa the in-plane bulk modulus of the plane condition (material.hpp). The thesis
+//          prints the 3D K; only kappa_2D makes MO 2D reduce to PMB 2D where PMB holds
+//          (nu = 1/3 plane stress, nu = 1/4 plane strain), as MO 3D reduces to PMB 3D at nu = 1/4.
+//          For spec/000c V7 (Si3N4) this gives 8.062e-4 (stress) / 7.853e-4 (strain), not 7.975e-4.
 //   MO 3D  s0 = sqrt(Gc / (3G + (3/4)^4 (K - 5G/3)) / delta)          (Madenci-Oterkus; 000c eq. 8.11)
 #pragma once
 #include "pd/bonds.hpp"
@@ -28,10 +32,11 @@ inline double s0_pmb(double Gc, double E, double delta, int dim, Plane plane)
     if (plane == Plane::stress) return std::sqrt(4 * pi * Gc / (9 * E * delta));
     return std::sqrt(5 * pi * Gc / (12 * E * delta));
 }
-inline double s0_madenci_oterkus_2d(double Gc, const Elastic& m, double delta)
+inline double s0_madenci_oterkus_2d(double Gc, const Elastic& m, double delta, Plane plane)
 {
     const double pi = std::numbers::pi;
-    return std::sqrt(Gc / ((6 / pi) * m.G + 16 / (9 * pi * pi) * (m.K - 2 * m.G)) / delta);
+    const double kappa = kappa_dim(m, 2, plane);
+    return std::sqrt(Gc / ((6 / pi) * m.G + 16 / (9 * pi * pi) * (kappa - 2 * m.G)) / delta);
 }
 inline double s0_madenci_oterkus_3d(double Gc, const Elastic& m, double delta)
 {

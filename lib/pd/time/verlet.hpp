@@ -4,8 +4,9 @@
 //   v_{n+1/2} = v_n + dt/2 a_n;  BCs on v_{n+1/2};  u_{n+1} = u_n + dt v_{n+1/2};
 //   a_{n+1} = (f(u_{n+1}) + b_{n+1}) / rho;  v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}.
 // Energies [J]: kinetic sum 1/2 rho v^2 V, strain sum W_i V_i, external work of body forces and
-// of the constraints (reaction -f times displacement increment, trapezoidal in time; the
-// inertia of a constrained node is not counted as external work).
+// of the constraints (reaction -f times displacement increment, trapezoidal in time, plus the
+// change of kinetic energy of the constrained components, which the constraint supplies).
+// A velocity-prescribed component ends the step at g(t_{n+1}).
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
 // (initial energy + |external work|) and above a round-off floor (the whole mass moving at
 // 1e-10 m/s: a scene at rest stays quiet), throws Unstable naming the step and the node.
@@ -75,6 +76,7 @@ public:
         if (!(dt > 0)) throw std::invalid_argument("time step dt must be positive");
         const std::size_t n = body.size();
         for (int d = 0; d < D; ++d) u_old_.c[d] = u.c[d];  // for the external work
+        const double kinetic_constrained_old = constrained_kinetic();
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < n; ++i) v.c[d][i] += 0.5 * dt * a.c[d][i];
         for (const auto& p : boundary.prescribed)
@@ -95,6 +97,9 @@ public:
                 if (constrained_[i * D + d]) continue;
                 v.c[d][i] += 0.5 * dt * a.c[d][i];
             }
+        for (const auto& p : boundary.prescribed)
+            if (p.kind == Prescribed::Kind::velocity)
+                for (int i : p.nodes) v.c[p.component][i] = p.g(t);
         // External work: body forces on every node, reactions on constrained components.
         double work = 0;
         for (int d = 0; d < D; ++d)
@@ -105,7 +110,7 @@ public:
                 if (constrained_[i * D + d]) load = -0.5 * (f_.c[d][i] + f_prev_.c[d][i]);  // reaction density
                 work += load * du * body.volume[i];
             }
-        external_work_ += work;
+        external_work_ += work + constrained_kinetic() - kinetic_constrained_old;
         check_finite();
     }
 
@@ -170,6 +175,15 @@ private:
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < body.size(); ++i)
                 a.c[d][i] = constrained_[i * D + d] ? 0.0 : (f_.c[d][i] + b_.c[d][i]) / rho[i];
+    }
+
+    double constrained_kinetic() const  // [J]
+    {
+        double k = 0;
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < body.size(); ++i)
+                if (constrained_[i * D + d]) k += 0.5 * rho[i] * v.c[d][i] * v.c[d][i] * body.volume[i];
+        return k;
     }
 
     int fastest_node() const
