@@ -1,6 +1,6 @@
 // bench/pd_bench.cpp -- bond throughput of THE bond loop (bond_loop.hpp) on a 3D simple-cubic box.
 // Scene: N x N x N nodes, spacing dx, horizon delta = m dx, influence 1, no partial volumes, no
-// damage; steel-like E = 200 GPa, nu = 1/4, rho = 7850 kg/m^3; PMB (continuum micromodulus) or LPS.
+// bond breaking; steel-like E = 200 GPa, nu = 1/4, rho = 7850 kg/m^3; PMB (continuum micromodulus) or LPS.
 // Initial state: isotropic stretch 1e-4 plus a smooth wave, so every bond carries a force.
 // Timed (steady_clock, after one untimed warm-up):
 //   --what step (default): S velocity-Verlet steps of pd::Explicit::step at 0.5 x the
@@ -8,8 +8,12 @@
 //   --what force: S calls of pd::internal_force (LPS: point pass + bond pass).
 // bond_updates_per_s = bonds * steps / wall_s with bonds = ordered pairs i->j (|xi| <= delta):
 // one update is one bond force evaluation in one step. --repeat R reports the fastest of R runs.
-// --verify reruns everything on 1 thread and exits 1 unless u, v and f agree bit for bit.
-// Run: pd_bench --model pmb|lps --n N --m 3 --steps S --threads T [--what step|force]
+// --verify reruns everything on 1 thread and exits 1 unless u, v and f agree bit for bit;
+// --checksum prints a hash of the bits of u, v and f to stderr (to compare separate runs).
+// --damage switches the bond-damage bookkeeping on (every bond intact), i.e. times the loop
+// variant of damaged scenes.
+// Run: pd_bench --model pmb|lps --n N --m 3 --steps S --threads T [--what step|force] [--repeat R]
+//      [--verify] [--checksum] [--damage]
 // Writes: CSV header (unless --no-header) and one line
 //   model,nodes,bonds,steps,threads,wall_s,bond_updates_per_s
 #include "pd/bond_loop.hpp"
@@ -26,7 +30,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <numbers>
 #include <string>
 
@@ -45,12 +51,13 @@ struct Scene {
     pd::Field<3> u0;  // initial displacement [m]
 };
 
-Scene make_scene(int n, int m, double dx)
+Scene make_scene(int n, int m, double dx, bool damage)
 {
     Scene s;
     const double side = n * dx;
     s.body = pd::box<3>({0, 0, 0}, {side, side, side}, dx);
     s.bonds = pd::build_bonds(s.body, m * dx);
+    if (damage) s.bonds.enable_damage();
     s.u0.resize(s.body.size());
     for (std::size_t i = 0; i < s.body.size(); ++i) {
         const pd::Vec<3> x = s.body.x[i];
@@ -84,7 +91,7 @@ Outcome run(Scene& s, Model& model, const std::string& what, int steps, int repe
         out.u = s.u0;
         return out;
     }
-    pd::Bonds& bonds = s.bonds;  // no damage: Explicit leaves the bonds unchanged
+    pd::Bonds& bonds = s.bonds;  // no damage law is attached, so no bond breaks
     pd::Explicit<3, Model> sim(s.body, bonds, model, rho_steel);
     sim.u = s.u0;
     sim.start();
@@ -101,6 +108,20 @@ Outcome run(Scene& s, Model& model, const std::string& what, int steps, int repe
     out.v = sim.v;
     out.f = sim.internal_force_density();
     return out;
+}
+
+// FNV-1a hash of the bits of the fields.
+std::uint64_t hash_bits(std::initializer_list<const pd::Field<3>*> fields)
+{
+    std::uint64_t h = 14695981039346656037ull;
+    for (const auto* field : fields)
+        for (const auto& comp : field->c)
+            for (double v : comp) {
+                std::uint64_t b;
+                std::memcpy(&b, &v, sizeof b);
+                h = (h ^ b) * 1099511628211ull;
+            }
+    return h;
 }
 
 bool same_bits(const pd::Field<3>& a, const pd::Field<3>& b)
@@ -128,6 +149,8 @@ int main(int argc, char** argv)
     int& repeat = opt.add_int("repeat", 1, "timed runs; the fastest is reported");
     double& dx = opt.add("dx", 1e-3, "lattice spacing", "m");
     bool& verify = opt.add_flag("verify", "rerun on 1 thread and require bit-identical u, v, f");
+    bool& checksum = opt.add_flag("checksum", "print a hash of the bits of u, v, f to stderr");
+    bool& damage = opt.add_flag("damage", "bond-damage bookkeeping on (all bonds intact)");
     bool& no_header = opt.add_flag("no-header", "omit the CSV header line");
     opt.require_at_least("n", 2);
     opt.require_at_least("m", 1);
@@ -138,7 +161,7 @@ int main(int argc, char** argv)
     opt.parse(argc, argv);
 
     // 2. Discretisation and model.
-    Scene s = make_scene(n, m, dx);
+    Scene s = make_scene(n, m, dx, damage);
     const pd::Elastic material = pd::Elastic::from_E_nu(E_steel, nu_pmb);
     auto bench = [&](auto& model, int t) { return run(s, model, what, steps, repeat, t); };
     auto measure = [&](int t) {
@@ -158,7 +181,10 @@ int main(int argc, char** argv)
                 out.wall_s, bonds * steps / out.wall_s);
     std::fflush(stdout);
 
-    // 4. Optional check: same bits on 1 thread.
+    // 4. Optional checks: hash of the final state; same bits on 1 thread.
+    if (checksum)
+        std::fprintf(stderr, "pd_bench: checksum %016llx (%s, n %d, %d steps, %d threads)\n",
+                     static_cast<unsigned long long>(hash_bits({&out.u, &out.v, &out.f})), what.c_str(), n, steps, threads);
     if (verify) {
         const Outcome ref = measure(1);
         const bool ok = same_bits(out.u, ref.u) && same_bits(out.v, ref.v) && same_bits(out.f, ref.f);

@@ -61,6 +61,12 @@ TEST(Damage, BreaksOnlyOverstretchedBondsAndHonoursNoFail)
     Field<1> f;
     internal_force(pmb, b, y, f);
     EXPECT_EQ(f.c[0][2], 0.0);
+    // A broken bond whose ends meet (|Y| = 0) still contributes exactly nothing, not NaN.
+    y.c[0][2] = y.c[0][1];
+    internal_force(pmb, b, y, f);
+    for (double v : f.c[0]) EXPECT_TRUE(std::isfinite(v));
+    EXPECT_EQ(f.c[0][2], 0.0);
+    EXPECT_EQ(f.c[0][1], 0.0);  // bond 0-1 is unstretched
 }
 
 // 4 x 4 plate (dx = 1, delta = 1.5: 8 neighbours), crack x = 2 from y = -1 to 2.2 cuts

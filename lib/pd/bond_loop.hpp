@@ -6,43 +6,88 @@
 //   double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const;
 //        // |force density of bond k| / |Y| [N/m^6 / m... i.e. N/m^7]; force on i is bond_scalar * Y
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
-// Broken bonds are skipped by multiplying with intact[k]; the undamaged scene compiles a loop
+// Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
 // without that array (if constexpr).
+// Summation order, fixed so that it depends neither on the threads nor on the vectoriser: bond
+// begin(i) + l + 8 m of node i goes to partial sum l (l < lanes = 8), and the 8 partial sums are
+// added pairwise at the end. The 8-bond inner loop has a fixed trip count, so GCC turns it into
+// SIMD code (y_j gathered, vsqrtpd, vdivpd) -- provided sqrt need not set errno, i.e. the build
+// uses -fno-math-errno; otherwise the loop stays scalar, with 8 independent partial sums.
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
 #include "pd/parallel.hpp"
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
 namespace pd {
 
 namespace detail {
+
+inline constexpr int lanes = 8;  // bonds per SIMD group: one AVX-512 or two AVX2 registers of doubles
+
+// `lanes` partial sums of C components, reduced pairwise in a fixed order.
+template <int C>
+struct LaneSum {
+    double s[C][lanes] = {};
+    double total(int c)
+    {
+        for (int w = lanes / 2; w > 0; w /= 2)
+            for (int l = 0; l < w; ++l) s[c][l] += s[c][l + w];
+        return s[c][0];
+    }
+};
+
+// Calls bond(k, l, keep) for every bond k of [kb, ke), with its lane l and keep = intact[k] as a
+// double (1 when the scene has no damage), full vectors of bonds first. The intact flags of a
+// vector are read as one 8-byte word, which the vectoriser can widen (a per-byte load it cannot).
+template <bool Damaged, class Bond>
+inline void for_lanes(std::int64_t kb, std::int64_t ke, const std::uint8_t* intact, Bond&& bond)
+{
+    static_assert(lanes == sizeof(std::uint64_t));
+    std::int64_t k = kb;
+    for (; k + lanes <= ke; k += lanes) {
+        std::uint64_t flags = 0;
+        if constexpr (Damaged) std::memcpy(&flags, intact + k, lanes);
+        for (int l = 0; l < lanes; ++l) {
+            const int byte = std::endian::native == std::endian::little ? l : lanes - 1 - l;  // byte of bond k + l
+            bond(k + l, l, Damaged ? static_cast<double>((flags >> (8 * byte)) & 0xff) : 1.0);
+        }
+    }
+    for (int l = 0; k < ke; ++k, ++l) bond(k, l, Damaged ? static_cast<double>(intact[k]) : 1.0);
+}
+
 template <bool Damaged, int D, class Model>
 void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f)
 {
+    const std::int64_t* offset = bonds.offset.data();
     const int* partner = bonds.partner.data();
     const std::uint8_t* intact = bonds.intact.data();
     const double* y0 = y.c[0].data();
     const double* y1 = D > 1 ? y.c[1].data() : nullptr;
     const double* y2 = D > 2 ? y.c[2].data() : nullptr;
     parallel_for(bonds.nodes(), [&](std::size_t i) {
-        double f0 = 0, f1 = 0, f2 = 0;
+        LaneSum<D> sum;
         const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
-        const std::int64_t kb = bonds.begin(i), ke = bonds.end(i);
-#pragma omp simd reduction(+ : f0, f1, f2)
-        for (std::int64_t k = kb; k < ke; ++k) {
+        for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
             const int j = partner[k];
             const double Y0 = y0[j] - yi0;
             const double Y1 = D > 1 ? y1[j] - yi1 : 0;
             const double Y2 = D > 2 ? y2[j] - yi2 : 0;
-            double t = model.bond_scalar(i, k, j, std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2));
-            if constexpr (Damaged) t *= intact[k];
-            f0 += t * Y0;
-            f1 += t * Y1;
-            f2 += t * Y2;
-        }
-        f.c[0][i] = f0;
-        if constexpr (D > 1) f.c[1][i] = f1;
-        if constexpr (D > 2) f.c[2][i] = f2;
+            double ylen = std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2);  // |Y| [m]
+            // A broken bond is zeroed by the factor keep; lengthening it by 1 m first keeps a
+            // broken bond of zero length from giving inf * 0 = NaN (no effect on intact bonds).
+            if constexpr (Damaged) ylen += 1.0 - keep;
+            double t = model.bond_scalar(i, k, j, ylen);
+            if constexpr (Damaged) t *= keep;
+            sum.s[0][l] += t * Y0;
+            if constexpr (D > 1) sum.s[1][l] += t * Y1;
+            if constexpr (D > 2) sum.s[2][l] += t * Y2;
+        });
+        for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
     });
 }
 }  // namespace detail

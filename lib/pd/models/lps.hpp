@@ -13,6 +13,7 @@
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y|. m_i is fixed at the reference configuration;
 // theta_i and the forces sum only intact bonds.
 #pragma once
+#include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
 #include "pd/material.hpp"
@@ -36,13 +37,15 @@ struct LPS {
     std::vector<double> p_coef;    // D kappa / m_i [Pa/m^5]
     std::vector<double> alpha;     // a_D G / m_i [Pa/m^5]
     std::vector<double> theta;     // dilatation, updated by point_pass [-]
+    std::vector<double> wV;        // omega V_j per bond (influence times partner volume) [m^3]
     const Bonds* bonds = nullptr;
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
         : dim(p.dim), kappa(kappa_dim(p.material, p.dim, p.plane)), G(p.material.G),
-          m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), bonds(&b)
+          m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), wV(b.size()), bonds(&b)
     {
+        for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
         const double a_D = dim == 3 ? 15.0 : dim == 2 ? 8.0 : 0.0;
         for (std::size_t i = 0; i < b.nodes(); ++i) {
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) m[i] += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
@@ -52,29 +55,23 @@ struct LPS {
         }
     }
 
-    // theta_i = (D/m_i) sum_j omega |xi| e V_j over intact bonds.
+    // theta_i = (D/m_i) sum_j omega |xi| e V_j over intact bonds (lane order of bond_loop.hpp).
     template <int D>
     void point_pass(const Bonds& b, const Field<D>& y)
     {
-        parallel_for(b.nodes(), [&](std::size_t i) {
-            double sum = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (b.has_damage() && !b.intact[k]) continue;
-                const double L = b.length[k];
-                sum += b.omega[k] * L * (norm(y[b.partner[k]] - y[i]) - L) * b.volume[k];
-            }
-            theta[i] = m[i] > 0 ? D * sum / m[i] : 0.0;
-        });
+        if (b.has_damage()) dilatation<true>(b, y);
+        else dilatation<false>(b, y);
     }
 
-    // (t_i + t_j) V_j / |Y|: force on i is this times Y.
+    // (t_i + t_j) V_j / |Y|: force on i is this times Y, with t = omega (D kappa theta |xi| / m
+    // + alpha e_d) (4.11) regrouped as omega (|xi| (p theta - alpha theta / D) + alpha e).
     double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
     {
-        const double L = bonds->length[k], w = bonds->omega[k];
+        const double L = bonds->length[k];
         const double e = ylen - L;
-        const double ti = w * (p_coef[i] * theta[i] * L + alpha[i] * (e - theta[i] * L / dim));
-        const double tj = w * (p_coef[j] * theta[j] * L + alpha[j] * (e - theta[j] * L / dim));
-        return (ti + tj) * bonds->volume[k] / ylen;
+        const double dev = (alpha[i] * theta[i] + alpha[j] * theta[j]) / dim;
+        const double tij = L * (p_coef[i] * theta[i] + p_coef[j] * theta[j] - dev) + (alpha[i] + alpha[j]) * e;
+        return tij * wV[k] / ylen;
     }
 
     // W_i (4.10) [J/m^3]; call after point_pass at the same y.
@@ -93,6 +90,34 @@ struct LPS {
             W[i] = 0.5 * kappa * theta[i] * theta[i] + 0.5 * alpha[i] * dev;
         });
         return W;
+    }
+
+private:
+    template <bool Damaged, int D>
+    void dilatation(const Bonds& b, const Field<D>& y)
+    {
+        const std::int64_t* offset = b.offset.data();
+        const int* partner = b.partner.data();
+        const std::uint8_t* intact = b.intact.data();
+        const double* len = b.length.data();
+        const double* wv = wV.data();
+        const double* y0 = y.c[0].data();
+        const double* y1 = D > 1 ? y.c[1].data() : nullptr;
+        const double* y2 = D > 2 ? y.c[2].data() : nullptr;
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            detail::LaneSum<1> sum;
+            const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
+            detail::for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
+                const int j = partner[k];
+                const double Y0 = y0[j] - yi0;
+                const double Y1 = D > 1 ? y1[j] - yi1 : 0;
+                const double Y2 = D > 2 ? y2[j] - yi2 : 0;
+                double s = wv[k] * len[k] * (std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2) - len[k]);
+                if constexpr (Damaged) s *= keep;
+                sum.s[0][l] += s;
+            });
+            theta[i] = m[i] > 0 ? D * sum.total(0) / m[i] : 0.0;
+        });
     }
 };
 
