@@ -19,6 +19,7 @@
 //   default: both studies and the stability sweep (standard size); --N n: one run of --model.
 // Writes: convergence.csv, stability.csv, summary.csv, history.csv (tip: PD, exact, FE), params.csv.
 // Exit: 2 invalid option, 3 a run became unstable (outside the stability study), 1 a check failed.
+#include "pd/io/guarded_main.hpp"
 #include "pd/io/convergence.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
@@ -114,7 +115,7 @@ Run run_pd(const Bar& b, const std::string& model, int N, int m, double dt_scale
 
 }  // namespace
 
-int main(int argc, char** argv)
+static int run(int argc, char** argv)
 {
     // 1. Options (SI; defaults = the source's case, spec/000b V1), validated, echoed and saved.
     pd::io::Options opt("bar_modes_1d", "Fixed-free bar released from uniform strain: PD (LPS, PMB) vs classical.");
@@ -247,3 +248,5 @@ int main(int argc, char** argv)
     std::printf("verdict: %s: %s\n", pass ? "PASS" : "FAIL (see the checks above)", verdict);
     return opt.get_flag("check") && !pass ? 1 : 0;
 }
+
+int main(int argc, char** argv) { return pd::io::guarded_main("bar_modes_1d", [&] { return run(argc, argv); }); }

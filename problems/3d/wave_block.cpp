@@ -17,6 +17,7 @@
 // energy drift at dt and dt/2 vs the Verlet identity E_n - E_0 = dt^2/8 sum rho a_n^2 V (order 2).
 // Run: wave_block_3d [--model pmb|lps] [--dx 5e-4] [--m 3] [--quick] [--check] [--out DIR]
 // Writes: summary.csv, energy.csv, energy_half_dt.csv, centroid.csv, dispersion.csv, params.csv.
+#include "pd/io/guarded_main.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
@@ -137,7 +138,7 @@ History integrate(Model& model, const Block& blk, pd::Bonds& bonds, const Pulse&
 
 }  // namespace
 
-int main(int argc, char** argv)
+static int run(int argc, char** argv)
 {
     // 1. Options (SI), echoed and saved.
     pd::io::Options opt("wave_block_3d",
@@ -276,3 +277,5 @@ int main(int argc, char** argv)
                 relative_error(c1, cg1), cP, p_drift, e1, order, wall);
     return opt.get_flag("check") && !ok ? 1 : 0;
 }
+
+int main(int argc, char** argv) { return pd::io::guarded_main("wave_block_3d", [&] { return run(argc, argv); }); }

@@ -1,0 +1,35 @@
+// pd/io/guarded_main.hpp -- the exit-status contract of every executable, in one place:
+//   0 done, 1 a --check failed (the driver returns it), 2 invalid input (one line naming it),
+//   3 the run became unstable (step and node named; files written so far are kept).
+// Library calls reject impossible scenes with std::invalid_argument (empty node set, lattice
+// thinner than a cell, dx <= 0, ...); here they become the one-line message and status 2.
+//
+//     int main(int argc, char** argv) { return pd::io::guarded_main("bar_modes_1d", [&] { return run(argc, argv); }); }
+#pragma once
+
+#include "pd/time/verlet.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <stdexcept>
+
+namespace pd::io {
+
+template <class Fn>
+int guarded_main(const char* program, Fn&& fn)
+{
+    try {
+        return fn();
+    } catch (const Unstable& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return 3;
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: failed: %s\n", program, e.what());
+        return 1;
+    }
+}
+
+}  // namespace pd::io
