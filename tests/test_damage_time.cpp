@@ -99,6 +99,36 @@ TEST(CriticalStep, SillingAskari1DHandValue)
     EXPECT_DOUBLE_EQ(critical_step_cfl(dx, std::sqrt(E / rho)), dx / std::sqrt(E / rho));
 }
 
+// Interior nodes, delta = 3 dx, full families: sum_j V/|xi| = dx^(D-1) * measure * S_D with the
+// lattice sums S_3 = sum 1/|n| = 56.8778 (spec/000b V12) and, over the 28 offsets of 2D,
+// S_2 = 4/1 + 4/sqrt2 + 4/2 + 8/sqrt5 + 4/sqrt8 + 4/3 = 15.153683 (hand sum).
+TEST(CriticalStep, SillingAskari2D3DHandValues)
+{
+    const double dx = 1e-3, rho = 7800, c = 1e20, t = 2e-3;
+    auto b3 = box<3>({{0, 0, 0}}, {{9 * dx, 9 * dx, 9 * dx}}, dx);
+    const Bonds f3 = build_bonds(b3, 3 * dx);
+    const double dt3 = critical_step_silling_askari(f3, std::vector<double>(b3.size(), rho), c).dt;
+    EXPECT_NEAR(dt3 / std::sqrt(2 * rho / (c * dx * dx * 56.8778)), 1.0, 1e-6);
+    auto b2 = box<2>({{0, 0}}, {{9 * dx, 9 * dx}}, dx, t);
+    const Bonds f2 = build_bonds(b2, 3 * dx);
+    const double S2 = 4 + 4 / std::sqrt(2.0) + 2 + 8 / std::sqrt(5.0) + 4 / std::sqrt(8.0) + 4.0 / 3;
+    const double dt2 = critical_step_silling_askari(f2, std::vector<double>(b2.size(), rho), c).dt;
+    EXPECT_NEAR(dt2 / std::sqrt(2 * rho / (c * dx * t * S2)), 1.0, 1e-12);
+}
+
+// Traction p on a layer of thickness Delta becomes the body force p / Delta there (3.28).
+TEST(Boundary, TractionIsBodyForceOnTheLayer)
+{
+    Boundary<2> bc;
+    bc.traction({1, 3}, {{2e6, -1e6}}, 0.5e-3);
+    Field<2> b(4);
+    bc.external(0.0, b);
+    EXPECT_DOUBLE_EQ(b.c[0][1], 4e9);
+    EXPECT_DOUBLE_EQ(b.c[1][3], -2e9);
+    EXPECT_DOUBLE_EQ(b.c[0][0], 0.0);
+    EXPECT_DOUBLE_EQ(b.c[1][2], 0.0);
+}
+
 namespace {
 // Two nodes 1 m apart, node 0 fixed, PMB 1D with delta = 1, A = 1, V = 1: the force density on
 // node 1 is -c V u = -(2E/(A delta^2)) u, so with E = 1/2, rho = 1 it oscillates with omega = 1.

@@ -1,0 +1,62 @@
+// Every problem driver rejects invalid input with exit status 2 and ONE stderr line naming the
+// option (DESIGN.md, "Problem drivers"). Runs the built executables.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+struct Outcome {
+    int status;
+    std::string err;
+};
+Outcome run(const std::string& exe, const std::string& args)
+{
+    const std::string err_path = ::testing::TempDir() + "driver_err.txt";
+    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --out " + ::testing::TempDir() +
+                            "driver_out > /dev/null 2> " + err_path;
+    const int rc = std::system(cmd.c_str());
+    std::ifstream in(err_path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, ss.str()};
+}
+int lines(const std::string& s)
+{
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+}  // namespace
+
+TEST(DriverInputs, InvalidOptionsExitTwoWithOneLineNamingTheOption)
+{
+    const std::pair<const char*, const char*> cases[] = {
+        {"--E -1", "--E"},          {"--E 0", "--E"},           {"--rho 0", "--rho"},
+        {"--m 0", "--m"},           {"--dt-factor 0", "--dt-factor"}, {"--dt-factor -1", "--dt-factor"},
+        {"--bogus 1", "--bogus"},   {"--E abc", "--E"},         {"--model fem", "--model"},
+    };
+    for (const char* exe : {"bar_modes_1d", "wave_block_3d"})
+        for (const auto& [args, name] : cases) {
+            const Outcome o = run(exe, std::string("--quick ") + args);
+            EXPECT_EQ(o.status, 2) << exe << " " << args;
+            EXPECT_EQ(lines(o.err), 1) << exe << " " << args << ": " << o.err;
+            EXPECT_NE(o.err.find(name), std::string::npos) << exe << " " << args << ": " << o.err;
+        }
+    // Poisson's ratio outside (-1, 1/2) for the 3D block.
+    for (const char* nu : {"0.5", "-1", "0.7"}) {
+        const Outcome o = run("wave_block_3d", std::string("--quick --nu ") + nu);
+        EXPECT_EQ(o.status, 2) << nu;
+        EXPECT_EQ(lines(o.err), 1) << o.err;
+        EXPECT_NE(o.err.find("nu"), std::string::npos) << o.err;
+    }
+}
+
+TEST(DriverInputs, HelpExitsZero)
+{
+    for (const char* exe : {"bar_modes_1d", "wave_block_3d", "pd_run"}) EXPECT_EQ(run(exe, "--help").status, 0) << exe;
+}
