@@ -1,10 +1,16 @@
 // THE bond loop: internal force density f_i = sum_j t_ij(Y) Y_ij over the intact bonds of i
-// [N/m^3], for every ordinary model (force along the deformed bond Y = y_j - y_i).
+// [N/m^3], for every ordinary model (force along the deformed bond Y = y_j - y_i), and
+// f_i = sum_j f_ij(Y) for non-ordinary ones (below).
 // A model supplies
 //   static constexpr bool has_point_pass;      // per-point pass before the bond pass (LPS theta)
 //   void point_pass(const Bonds&, const Field<D>& y);
 //   double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const;
 //        // |force density of bond k| / |Y| [N/m^6 / m... i.e. N/m^7]; force on i is bond_scalar * Y
+// A non-ordinary model (correspondence) declares `static constexpr bool ordinary = false;` (absent
+// means ordinary) and supplies instead
+//   Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const;
+//        // force density on i from bond k, both ends' states included, (T_i<xi> - T_j<-xi>) V_j [N/m^3]
+// The choice is made at compile time (if constexpr): ordinary models compile the same loop as before.
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
 // without that array (if constexpr).
@@ -60,6 +66,14 @@ inline void for_lanes(std::int64_t kb, std::int64_t ke, const std::uint8_t* inta
     for (int l = 0; k < ke; ++k, ++l) bond(k, l, Damaged ? static_cast<double>(intact[k]) : 1.0);
 }
 
+// True unless the model declares `static constexpr bool ordinary = false`.
+template <class Model>
+constexpr bool is_ordinary()
+{
+    if constexpr (requires { Model::ordinary; }) return Model::ordinary;
+    else return true;
+}
+
 template <bool Damaged, int D, class Model>
 void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f)
 {
@@ -77,15 +91,25 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
             const double Y0 = y0[j] - yi0;
             const double Y1 = D > 1 ? y1[j] - yi1 : 0;
             const double Y2 = D > 2 ? y2[j] - yi2 : 0;
-            double ylen = std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2);  // |Y| [m]
-            // A broken bond is zeroed by the factor keep; lengthening it by 1 m first keeps a
-            // broken bond of zero length from giving inf * 0 = NaN (no effect on intact bonds).
-            if constexpr (Damaged) ylen += 1.0 - keep;
-            double t = model.bond_scalar(i, k, j, ylen);
-            if constexpr (Damaged) t *= keep;
-            sum.s[0][l] += t * Y0;
-            if constexpr (D > 1) sum.s[1][l] += t * Y1;
-            if constexpr (D > 2) sum.s[2][l] += t * Y2;
+            if constexpr (is_ordinary<Model>()) {
+                double ylen = std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2);  // |Y| [m]
+                // A broken bond is zeroed by the factor keep; lengthening it by 1 m first keeps a
+                // broken bond of zero length from giving inf * 0 = NaN (no effect on intact bonds).
+                if constexpr (Damaged) ylen += 1.0 - keep;
+                double t = model.bond_scalar(i, k, j, ylen);
+                if constexpr (Damaged) t *= keep;
+                sum.s[0][l] += t * Y0;
+                if constexpr (D > 1) sum.s[1][l] += t * Y1;
+                if constexpr (D > 2) sum.s[2][l] += t * Y2;
+            } else {
+                Vec<D> Y;
+                Y[0] = Y0;
+                if constexpr (D > 1) Y[1] = Y1;
+                if constexpr (D > 2) Y[2] = Y2;
+                Vec<D> fk = model.bond_force(i, k, j, Y);  // must be finite for broken bonds too
+                if constexpr (Damaged) fk *= keep;
+                for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
+            }
         });
         for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
     });

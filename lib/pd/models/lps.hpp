@@ -15,13 +15,19 @@
 // damage; then sum_intact omega e_d |xi| V != 0 and the force is no longer the exact gradient of
 // the reported W (a few % with ~20 % of bonds broken), so energy totals of damaged LPS runs are
 // approximate beyond the energy released by the broken bonds.
+// Optional shear correction (spec/000b sec. 1.3, eq. 4.14): apply_shear_correction sets
+// alpha_i = SCF_i a_D G / m_i with SCF_i from models/scf.hpp (Peridigm's probe); W and the force
+// both use alpha_i, so the force stays the gradient of W. Without it (the default) every member
+// and result is exactly as before; with SCF_i = 1 the forces are bit-identical to no correction.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
 #include "pd/material.hpp"
+#include "pd/models/scf.hpp"
 #include "pd/parallel.hpp"
 
+#include <stdexcept>
 #include <vector>
 
 namespace pd {
@@ -38,10 +44,11 @@ struct LPS {
     double G = 0;                  // shear modulus [Pa]
     std::vector<double> m;         // weighted volume m_i [m^5 in 3D]
     std::vector<double> p_coef;    // D kappa / m_i [Pa/m^5]
-    std::vector<double> alpha;     // a_D G / m_i [Pa/m^5]
+    std::vector<double> alpha;     // a_D G / m_i, times SCF_i when corrected [Pa/m^5]
     std::vector<double> theta;     // dilatation, updated by point_pass [-]
     std::vector<double> wV;        // omega V_j per bond (influence times partner volume) [m^3]
     const Bonds* bonds = nullptr;
+    std::vector<double> scf;       // shear correction factor SCF_i [-]; empty when not applied
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
@@ -49,7 +56,7 @@ struct LPS {
           m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), wV(b.size()), bonds(&b)
     {
         for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
-        const double a_D = dim == 3 ? 15.0 : dim == 2 ? 8.0 : 0.0;
+        const double a_D = detail::scf_shear_constant(dim);
         for (std::size_t i = 0; i < b.nodes(); ++i) {
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) m[i] += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
             const double inv_m = m[i] > 0 ? 1.0 / m[i] : 0.0;  // isolated node: no force
@@ -57,6 +64,24 @@ struct LPS {
             alpha[i] = a_D * G * inv_m;
         }
     }
+
+    // alpha_i = SCF_i a_D G / m_i (4.14), one factor per node [-]. Replaces any earlier correction
+    // (alpha is rebuilt from m_i, not rescaled), so calling it twice does not compound.
+    void apply_shear_correction(const std::vector<double>& factor)
+    {
+        if (factor.size() != m.size()) throw std::invalid_argument("LPS::apply_shear_correction: one factor per node expected");
+        for (double s : factor)
+            if (!(s > 0)) throw std::invalid_argument("LPS::apply_shear_correction: SCF must be > 0");
+        const double a_D = detail::scf_shear_constant(dim);
+        for (std::size_t i = 0; i < m.size(); ++i) {
+            const double inv_m = m[i] > 0 ? 1.0 / m[i] : 0.0;
+            alpha[i] = a_D * G * inv_m * factor[i];  // same product as the constructor, times SCF_i
+        }
+        scf = factor;
+    }
+    // The same with Peridigm's SCF computed from the reference positions x [m] (models/scf.hpp).
+    template <int D>
+    void apply_shear_correction(const Field<D>& x) { apply_shear_correction(shear_correction_factor(*bonds, x, dim)); }
 
     // theta_i = (D/m_i) sum_j omega |xi| e V_j over intact bonds (lane order of bond_loop.hpp).
     template <int D>

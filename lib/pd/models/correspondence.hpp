@@ -1,0 +1,243 @@
+// Correspondence model, non-ordinary state-based (Silling et al. 2007; Warren 2009; spec/000b
+// sec. 0, 1.5, 1.6 and errata 1-4; spec/000a sec. 2.7, 2.8). Per node i, over intact bonds:
+//   shape tensor       K_i = sum_j omega xi (x) xi V_j                      (000b eq. 2.51, "H")
+//   deformation grad.  F_i = (sum_j omega Y (x) xi V_j) K_i^-1               (2.50)
+//   stress             P_i (first Piola-Kirchhoff) from a point law, below
+//   force state        T_i<xi> = omega P_i K_i^-1 xi                         (erratum 1: not P^T)
+//   bond force on i    (T_i<xi> - T_j<-xi>) V_j = omega (P_i K_i^-1 + P_j K_j^-1) xi V_j
+// Stress laws:
+//   Law::linear           small strain: eps = sym(F) - I, sigma = lambda tr(eps) I + 2 G eps, P = sigma
+//                         (2D: plane strain, or plane stress with lambda* = 2 lambda G/(lambda + 2G)).
+//   Law::saint_venant_kirchhoff  (3D) hyperelastic, objective: E = (F^T F - I)/2, S = lambda tr(E) I + 2 G E,
+//                         P = F S = dW/dF, W = lambda tr(E)^2/2 + G E:E (a non-symmetric P: it tests erratum 1).
+//   Law::flanagan_taylor  hypoelastic rate form on the unrotated Cauchy stress (3D only), advanced by
+//                         update_stress(bonds, y, v, dt) (000b sec. 1.5 [CODE] steps 1-8, errata 2-3):
+//                         sigma_hat += (K tr(d) I + 2 G dev(d)) dt, sigma = R sigma_hat R^T, P = J sigma F^-T.
+// Littlewood hourglass control (000b sec. 1.6, stabilising sign of erratum 4), from both ends:
+//   t_hg = C_hg c ((y_j - y_i - F xi) . M)/|xi| M,  M = Y/|Y|,  c = PMB micromodulus (18K/(pi delta^4) in 3D),
+//   summed with F = F_i (bond i->j) and F = F_j (bond j->i): on i, C_hg c V_j ((2Y - (F_i + F_j) xi).M)/|xi| M.
+//   No omega factor (as Peridigm). C_hg = 0 (default) switches it off; the source uses 0.02.
+// A node whose K is singular (fewer than D independent intact bonds) gets K^-1 = 0 and F = I: no stress force.
+// Usage: internal_force(model, bonds, y, f) (bond_loop.hpp) runs point_pass (K on damage, F, P) and the
+// bond pass. With Law::flanagan_taylor call update_stress(bonds, y, v, dt) once per step, then
+// internal_force at y_np1. Pass v = v_nph = (y_np1 - y_n)/dt with the mid-step configuration
+// y = (y_n + y_np1)/2: L = Fdot F^-1 is then exactly skew for a rigid rotation (Cayley), so no
+// spurious stress. Peridigm pairs v_nph with y_np1, which gives a spurious expansion
+// N (1 - cos(theta/N)) per rotation theta in N steps (2.8e-2 K of stress for 90 degrees in 100 steps;
+// tests/test_correspondence.cpp).
+#pragma once
+#include "pd/bond_loop.hpp"
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
+#include "pd/influence.hpp"
+#include "pd/lattice.hpp"
+#include "pd/material.hpp"
+#include "pd/models/pmb.hpp"
+#include "pd/parallel.hpp"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+template <int D>
+struct Correspondence {
+    static_assert(D == 2 || D == 3, "correspondence is written for 2D and 3D");
+    static constexpr bool has_point_pass = true;
+    static constexpr bool ordinary = false;
+    using Mat = Eigen::Matrix<double, D, D>;
+    using Col = Eigen::Matrix<double, D, 1>;
+    enum class Law { linear, saint_venant_kirchhoff, flanagan_taylor };
+    struct Params {
+        Elastic material;
+        Law law = Law::linear;
+        double C_hg = 0;               // Littlewood hourglass coefficient [-]; 0 = off, source 0.02
+        Plane plane = Plane::strain;   // 2D reduction of the linear law
+        double measure = 1;            // 2D thickness [m] (hourglass micromodulus only)
+    };
+
+    Params par;
+    double lambda = 0;                // Lame constant of the (reduced) linear law [Pa]
+    double c_hg = 0;                  // C_hg times the PMB micromodulus [N/m^6 in 3D]
+    Field<D> x;                       // reference positions [m]
+    std::vector<double> wV;           // omega V_j per bond [m^3]
+    const double* volume = nullptr;   // V_j per bond, of the bonds the model was built on [m^3]
+    std::vector<Mat> Kinv;            // K_i^-1 [m^-5 in 3D]
+    std::vector<Mat> F;               // deformation gradient [-]
+    std::vector<Mat> sigma;           // Cauchy stress [Pa] (Law::linear: the small-strain stress)
+    std::vector<Mat> P;               // first Piola-Kirchhoff stress [Pa]
+    std::vector<Mat> PKinv;           // P_i K_i^-1 [Pa/m^5 in 3D]
+    std::vector<Mat> sigma_hat, R, V; // Flanagan-Taylor: unrotated stress [Pa], rotation, left stretch [-]
+
+    Correspondence() = default;
+    Correspondence(const Params& p, const Body<D>& body, const Bonds& b)
+        : par(p), x(body.x), wV(b.size()), volume(b.volume.data()), Kinv(b.nodes(), Mat::Zero()), F(b.nodes(), Mat::Identity()),
+          sigma(b.nodes(), Mat::Zero()), P(b.nodes(), Mat::Zero()), PKinv(b.nodes(), Mat::Zero())
+    {
+        if (D != 3 && p.law != Law::linear) throw std::invalid_argument("Correspondence: only Law::linear is written for 2D");
+        const double K = p.material.K, G = p.material.G;
+        lambda = K - 2 * G / 3;
+        if (D == 2 && p.plane == Plane::stress) lambda = 2 * lambda * G / (lambda + 2 * G);
+        c_hg = p.C_hg * pmb_micromodulus(kappa_dim(p.material, D, p.plane), D,
+                                         horizon_moment(Influence{}, 1, b.delta, D, p.measure));
+        for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
+        if (p.law == Law::flanagan_taylor) {
+            sigma_hat.assign(b.nodes(), Mat::Zero());
+            R.assign(b.nodes(), Mat::Identity());
+            V.assign(b.nodes(), Mat::Identity());
+        }
+        shape_tensors(b);
+    }
+
+    Col xi(std::size_t i, int j) const
+    {
+        Col r;
+        for (int d = 0; d < D; ++d) r(d) = x.c[d][j] - x.c[d][i];
+        return r;
+    }
+
+    // K_i^-1 over intact bonds (000b eq. 2.51); singular K (|det| below a relative 1e-12 of the
+    // scale of K^D) gives 0.
+    void shape_tensors(const Bonds& b)
+    {
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            Mat K = Mat::Zero();
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (b.has_damage() && !b.intact[k]) continue;
+                const Col e = xi(i, b.partner[k]);
+                K += wV[k] * e * e.transpose();
+            }
+            const double scale = K.trace() / D;
+            const double det = K.determinant();
+            Kinv[i] = scale > 0 && std::abs(det) > 1e-12 * std::pow(scale, D) ? Mat(K.inverse()) : Mat::Zero();
+        });
+    }
+
+    // sum_j omega z (x) xi V_j K_i^-1 over intact bonds, z = field difference z_j - z_i (F from y, Fdot from v).
+    Mat gradient(const Bonds& b, std::size_t i, const Field<D>& z) const
+    {
+        Mat N = Mat::Zero();
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+            if (b.has_damage() && !b.intact[k]) continue;
+            const int j = b.partner[k];
+            Col dz;
+            for (int d = 0; d < D; ++d) dz(d) = z.c[d][j] - z.c[d][i];
+            N += wV[k] * dz * xi(i, j).transpose();
+        }
+        return N * Kinv[i];
+    }
+
+    // Second Piola-Kirchhoff stress S = lambda tr(E) I + 2 G E, E = (F^T F - I)/2.
+    Mat svk_stress(const Mat& Fi) const
+    {
+        const Mat E = 0.5 * (Fi.transpose() * Fi - Mat::Identity());
+        return lambda * E.trace() * Mat::Identity() + 2 * par.material.G * E;
+    }
+
+    // Small-strain stress sigma = lambda tr(eps) I + 2 G eps, eps = sym(F) - I.
+    Mat linear_stress(const Mat& Fi) const
+    {
+        const Mat eps = 0.5 * (Fi + Fi.transpose()) - Mat::Identity();
+        return lambda * eps.trace() * Mat::Identity() + 2 * par.material.G * eps;
+    }
+
+    // K^-1 (after damage), F, then P and P K^-1. Law::linear: P = sigma(F). Law::saint_venant_kirchhoff:
+    // P = F S, sigma = P F^T / J. Law::flanagan_taylor: P = J sigma F^-T with the sigma of the last
+    // update_stress.
+    template <int Dy>
+    void point_pass(const Bonds& b, const Field<Dy>& y)
+    {
+        static_assert(Dy == D);
+        if (b.has_damage()) shape_tensors(b);
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            if (Kinv[i].isZero(0)) { F[i] = Mat::Identity(); P[i] = PKinv[i] = Mat::Zero(); return; }
+            F[i] = gradient(b, i, y);
+            if (par.law == Law::linear) {
+                sigma[i] = linear_stress(F[i]);
+                P[i] = sigma[i];
+            } else if (par.law == Law::saint_venant_kirchhoff) {
+                P[i] = F[i] * svk_stress(F[i]);                                   // P = F S
+                sigma[i] = P[i] * F[i].transpose() / F[i].determinant();          // sigma = P F^T / J
+            } else {
+                P[i] = F[i].determinant() * sigma[i] * F[i].inverse().transpose();  // P = J sigma F^-T
+            }
+            PKinv[i] = P[i] * Kinv[i];
+        });
+    }
+
+    // Force density on i from bond k (i -> j): omega (P_i K_i^-1 + P_j K_j^-1) xi V_j plus hourglass.
+    Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const
+    {
+        const Col e = xi(i, j);
+        Col f = wV[k] * ((PKinv[i] + PKinv[j]) * e);
+        if (c_hg != 0) {
+            Col Yc;
+            for (int d = 0; d < D; ++d) Yc(d) = Y[d];
+            const double y2 = Yc.squaredNorm();
+            if (y2 > 0) {  // |Y| = 0 only for a collapsed (broken) bond: no direction, no force
+                f += (c_hg * volume[k] / e.norm() * (2 * Yc - (F[i] + F[j]) * e).dot(Yc) / y2) * Yc;
+            }
+        }
+        Vec<D> r;
+        for (int d = 0; d < D; ++d) r[d] = f(d);
+        return r;
+    }
+
+    // Energy density W_i [J/m^3]; call after point_pass. Law::saint_venant_kirchhoff: the exact
+    // W = lambda tr(E)^2/2 + G E:E. Otherwise the bookkeeping value 1/2 sigma : eps, eps = sym(F) - I
+    // (exact for Law::linear). Hourglass energy not included.
+    template <int Dy>
+    std::vector<double> energy_density(const Bonds& b, const Field<Dy>&) const
+    {
+        std::vector<double> W(b.nodes(), 0.0);
+        for (std::size_t i = 0; i < b.nodes(); ++i) {
+            const Mat eps = par.law == Law::saint_venant_kirchhoff
+                                ? Mat(0.5 * (F[i].transpose() * F[i] - Mat::Identity()))
+                                : Mat(0.5 * (F[i] + F[i].transpose()) - Mat::Identity());
+            const Mat stress = par.law == Law::saint_venant_kirchhoff ? svk_stress(F[i]) : sigma[i];
+            W[i] = 0.5 * (stress.array() * eps.array()).sum();
+        }
+        return W;
+    }
+
+    // Flanagan-Taylor update (3D): from F at y and Fdot at v, advance R, V, sigma_hat by dt [s]
+    // and set sigma = R sigma_hat R^T (000b sec. 1.5 [CODE] steps 1-8; 000a sec. 2.7).
+    template <int Dy>
+    void update_stress(const Bonds& b, const Field<Dy>& y, const Field<Dy>& v, double dt)
+    {
+        static_assert(Dy == 3 && D == 3, "Flanagan-Taylor is written for 3D");
+        if (b.has_damage()) shape_tensors(b);
+        const double K = par.material.K, G = par.material.G;
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            if (Kinv[i].isZero(0)) return;
+            F[i] = gradient(b, i, y);
+            const Mat Fdot = gradient(b, i, v);                   // step 1
+            const Mat L = Fdot * F[i].inverse();                  // step 2
+            const Mat Dr = 0.5 * (L + L.transpose()), Wr = 0.5 * (L - L.transpose());
+            const Mat VD = V[i] * Dr;                             // step 3: z_i = eps_ijk (V D)_jk
+            const Col z(VD(1, 2) - VD(2, 1), VD(2, 0) - VD(0, 2), VD(0, 1) - VD(1, 0));
+            const Col w(Wr(2, 1), Wr(0, 2), Wr(1, 0));            // axial vector, W a = w x a
+            const Col om = w + (V[i].trace() * Mat::Identity() - V[i]).inverse() * z;  // step 4
+            Mat Om;                                               // Om a = om x a
+            Om << 0, -om(2), om(1), om(2), 0, -om(0), -om(1), om(0), 0;
+            const double o2 = om.squaredNorm();
+            Mat Q = Mat::Identity();                              // step 5: Q = exp(dt Om), Rodrigues
+            if (o2 > 1e-30) {
+                const double o = std::sqrt(o2);
+                Q += std::sin(dt * o) / o * Om + (1 - std::cos(dt * o)) / o2 * Om * Om;
+            }
+            R[i] = Q * R[i];                                      // step 6
+            V[i] += dt * (L * V[i] - V[i] * Om);                  // step 7
+            const Mat d = R[i].transpose() * Dr * R[i];           // step 8
+            const double tr = d.trace();                          // erratum 2: K tr(d)
+            sigma_hat[i] += dt * (K * tr * Mat::Identity() + 2 * G * (d - tr / 3 * Mat::Identity()));
+            sigma[i] = R[i] * sigma_hat[i] * R[i].transpose();    // erratum 3
+        });
+    }
+};
+
+}  // namespace pd
