@@ -1,0 +1,155 @@
+// PALS, position-aware linear solid (Mitchell et al. 2015; spec/000b sec. 1.4), 3D, ordinary.
+//   energy        W_i = K theta_i^2 / 2 + G (sigma_i e_d)•e_d                        (4.15)
+//   dilatation    theta_i = (omega_i x)•e,  e = |Y| - |xi|,  e_d = e - theta_i |xi| / 3
+//   force state   t_i = (K theta_i - (2G/3)(sigma_i x)•e_d) omega_i x + 2G sigma_i e_d  (4.21)
+// Each node has its own dilatational influence state omega_i and deviatoric sigma_i, closest
+// (least squares) to normalised base functions omega0, sigma0 such that the six matching
+// deformations H_j (e1e1, e2e2, e3e3, and the xy, xz, yz unit shears) are reproduced exactly:
+//   omega_i<xi> = omega0 + l1 a^2 + l2 b^2 + l3 c^2 + 2 (l4 ab + l5 ac + l6 bc),  xi = (a, b, c)
+//     with (omega_i x)•(xi.H_j xi / |xi|) = tr H_j                                    (4.18)-(4.20)
+//   sigma_i<xi> = sigma0 + sum_j tau_j eps_j^2,  eps_j = xi.dev(H_j) xi / |xi|
+//     with (sigma_i eps_j)•eps_j = dev H_j : dev H_j = [2/3, 2/3, 2/3, 2, 2, 2]
+// (two 6x6 systems per node, the Peridigm `pals.cxx` construction of spec/000b sec. 1.4 [CODE],
+// including its degenerate-row rule, here applied to both systems: a diagonal entry < 1e-15
+// trace gets its row and column zeroed, diagonal 1, rhs 0; a system still singular gets zero
+// multipliers, i.e. omega = omega0 or sigma = sigma0 at that node).
+// Consequences: (omega_i x)•x = 3 and theta = 3s under isotropic expansion at EVERY node.
+// Dimensional consistency (spec/000b sec. 1.4 [RECON], the cause of the unit-system dependence
+// of thesis Tables 4.2-4.3): Peridigm uses omega0 = sigma0 = 1 in whatever length unit the
+// input has. Here the base functions are normalised on the full sphere,
+//   omega0 = 3 w0 / M2(w0),  sigma0 = (15/2) s0 / M2(s0),  M2(w) = int_sphere w |xi|^2 dV,
+// so (omega0 x)•x = 3 and (sigma0 eps)•eps = dev H : dev H on a full sphere (constant w:
+// omega0 = 15 / (4 pi delta^5), sigma0 = 75 / (8 pi delta^5), i.e. LPS's 3/m and 15/(2m)),
+// and the systems are solved in units of delta (xi/delta, V/delta^3, multipliers times
+// delta^5): the same specimen in SI, mm or cm gives the same multipliers and modulus.
+// Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y| (omega and sigma are even in xi), through
+// bond_scalar with t regrouped as in Peridigm: t = p_i omega_i |xi| + 2G sigma_i (e - theta_i
+// |xi|/3), p_i = (K + 2G m_sigma/9) theta_i - (2G/3)(sigma_i x)•e, m_sigma = (sigma_i x)•x.
+// Multipliers use the intact bonds; after damage call recompute(bonds).
+#pragma once
+#include "pd/bond_loop.hpp"
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
+#include "pd/influence.hpp"
+#include "pd/lattice.hpp"
+#include "pd/material.hpp"
+#include "pd/parallel.hpp"
+
+#include <array>
+#include <vector>
+
+namespace pd {
+
+struct PALS {
+    static constexpr bool has_point_pass = true;
+    struct Params {
+        Elastic material;
+        Influence omega0{};  // dilatational base function (shape only; normalised, see header)
+        Influence sigma0{};  // deviatoric base function (shape only; normalised, see header)
+    };
+    using Multipliers = std::array<double, 6>;  // dimensionless (times delta^5)
+
+    double K = 0;                       // bulk modulus [Pa]
+    double G = 0;                       // shear modulus [Pa]
+    double delta = 0;                   // horizon [m]
+    double omega0_scale = 0;            // 3 / M2(w0) [1/m^5]
+    double sigma0_scale = 0;            // (15/2) / M2(s0) [1/m^5]
+    std::vector<Multipliers> lambda;    // omega multipliers per node, lambda * delta^5 [-]
+    std::vector<Multipliers> tau;       // sigma multipliers per node, tau * delta^5 [-]
+    std::vector<double> m_sigma;        // (sigma_i x)•x per node [-]
+    std::vector<double> theta;          // dilatation, updated by point_pass [-]
+    std::vector<double> p;              // PALS pressure p_i, updated by point_pass [Pa]
+    std::vector<double> w_i, w_j;       // omega_i<xi> V_j and omega_j<xi> V_j per bond i->j [1/m^2]
+    std::vector<double> s_i, s_j;       // 2G sigma_i<xi> V_j and 2G sigma_j<xi> V_j per bond [Pa/m^2]
+    int singular_nodes = 0;             // nodes with a singular system (see header), after recompute
+    const Bonds* bonds = nullptr;
+    const Field<3>* x = nullptr;        // reference positions of the body [m] (kept for recompute)
+    Influence omega0_base{}, sigma0_base{};  // shapes of omega0, sigma0 (Params)
+
+    PALS() = default;
+    // body and bonds must outlive the model (recompute reads both).
+    PALS(const Params& prm, const Body<3>& body, const Bonds& b);
+
+    // Solve the two 6x6 systems of every node over the intact bonds of `b` and refresh the
+    // per-bond influence values (after damage, or after a change of partial volumes).
+    void recompute(const Bonds& b);
+
+    // Influence states of node i at bond vector xi [1/m^5] (from the stored multipliers).
+    double omega(std::size_t i, const Vec<3>& xi) const;
+    double sigma(std::size_t i, const Vec<3>& xi) const;
+
+    // theta_i = (omega_i x)•e and p_i over intact bonds (lane order of bond_loop.hpp).
+    template <int D>
+    void point_pass(const Bonds& b, const Field<D>& y)
+    {
+        static_assert(D == 3, "PALS is a 3D model");
+        if (b.has_damage()) dilatation<true>(b, y);
+        else dilatation<false>(b, y);
+    }
+
+    // (t_i<xi> + t_j<-xi>) V_j / |Y|: force on i is this times Y, with
+    // t_i + t_j = |xi| (p_i w_i + p_j w_j - (theta_i s_i + theta_j s_j)/3) + e (s_i + s_j).
+    double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
+    {
+        const double L = length[k];
+        const double e = ylen - L;
+        const double tij = L * (p[i] * w_i[k] + p[j] * w_j[k] - third * (theta[i] * s_i[k] + theta[j] * s_j[k]))
+                           + e * (s_i[k] + s_j[k]);
+        return tij / ylen;
+    }
+
+    // W_i = K theta_i^2 / 2 + G (sigma_i e_d)•e_d (4.15) [J/m^3]; call after point_pass at y.
+    template <int D>
+    std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const
+    {
+        static_assert(D == 3, "PALS is a 3D model");
+        std::vector<double> W(b.nodes(), 0.0);
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            double dev = 0;  // 2G (sigma e_d)•e_d
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (b.has_damage() && !b.intact[k]) continue;
+                const double L = b.length[k];
+                const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L * third;
+                dev += s_i[k] * ed * ed;
+            }
+            W[i] = 0.5 * K * theta[i] * theta[i] + 0.5 * dev;
+        });
+        return W;
+    }
+
+private:
+    static constexpr double third = 1.0 / 3.0;
+    const double* length = nullptr;  // |xi| of the bonds [m]
+
+    template <bool Damaged, int D>
+    void dilatation(const Bonds& b, const Field<D>& y)
+    {
+        const std::int64_t* offset = b.offset.data();
+        const int* partner = b.partner.data();
+        const std::uint8_t* intact = b.intact.data();
+        const double* len = length;
+        const double* wi = w_i.data();
+        const double* si = s_i.data();
+        const double* y0 = y.c[0].data();
+        const double* y1 = y.c[1].data();
+        const double* y2 = y.c[2].data();
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            detail::LaneSum<2> sum;
+            const double yi0 = y0[i], yi1 = y1[i], yi2 = y2[i];
+            detail::for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
+                const int j = partner[k];
+                const double Y0 = y0[j] - yi0, Y1 = y1[j] - yi1, Y2 = y2[j] - yi2;
+                double xe = len[k] * (std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2) - len[k]);  // x e [m^2]
+                if constexpr (Damaged) xe *= keep;
+                sum.s[0][l] += wi[k] * xe;
+                sum.s[1][l] += si[k] * xe;
+            });
+            const double th = sum.total(0);
+            theta[i] = th;
+            // p_i = (K + 2G m_sigma/9) theta - (2G/3)(sigma x)•e; s_i already holds 2G sigma V.
+            p[i] = (K + 2 * G * m_sigma[i] / 9) * th - third * sum.total(1);
+        });
+    }
+};
+
+}  // namespace pd
