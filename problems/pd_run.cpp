@@ -2,12 +2,13 @@
 // counterpart of Peridigm's text-file discretisation. Not a verification case: it has no reference
 // and no --quick/--check; the physics it runs is verified by the tests of the library.
 // Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed] (pd/io/point_cloud.hpp).
-// Model PMB or LPS (single material; block ids are passed through to the VTU files only), bond
+// Model PMB, LPS, LPS+SCF, PALS (3D) or correspondence (2D/3D, linear small-strain law, Littlewood
+// hourglass --hourglass C) (single material; block ids are passed through to the VTU files only), bond
 // family |xi| <= delta, velocity Verlet (pd::Explicit), fixed points held at their initial
 // displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
 // c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14).
 // Run:    pd_run --input cloud.csv --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3 --steps 1000
-//         [--model pmb|lps] [--dim 1|2|3] [--output-steps 0,500,1000] [--vtu-every 100] [--help]
+//         [--model pmb|lps|scf|pals|correspondence] [--hourglass C] [--dim 1|2|3] [--output-steps 0,500,1000] [--vtu-every 100] [--help]
 // Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J),
 //         DIR/state_stepNNNN.csv (node_id,x,y,z,ux,uy,uz,vx,vy,vz), DIR/state_stepNNNN.vtu + state.pvd.
 // Exit status: 0 done; 2 invalid input (one line naming the option or file:line); 3 unstable run
@@ -17,7 +18,9 @@
 #include "pd/io/point_cloud.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/io/vtu.hpp"
+#include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
+#include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
@@ -37,6 +40,7 @@ constexpr double dt_safety = 0.5;  // Silling & Askari's normal safety factor (s
 
 struct Run {
     std::string model;
+    double hourglass = 0;  // C_hg [-]
     pd::Elastic material;
     pd::Plane plane = pd::Plane::stress;
     double measure = 1, rho = 0, delta = 0, dx = 0;  // [m^(3-D)], [kg/m^3], [m], [m] (0: no lattice)
@@ -211,7 +215,23 @@ int run(Run cfg, const pd::io::PointCloud& pc)
         pd::PMB model(pmb, cfg.influence, bonds);
         return integrate<D>(cfg, pc, body, bonds, model);
     }
+    if (cfg.model == "correspondence") {
+        if constexpr (D >= 2) {
+            pd::Correspondence<D> model({.material = cfg.material, .C_hg = cfg.hourglass, .plane = cfg.plane, .measure = cfg.measure},
+                                        body, bonds);
+            return integrate<D>(cfg, pc, body, bonds, model);
+        }
+        fail("option --model correspondence needs --dim 2 or 3");
+    }
+    if (cfg.model == "pals") {
+        if constexpr (D == 3) {
+            pd::PALS model({.material = cfg.material}, body, bonds);
+            return integrate<D>(cfg, pc, body, bonds, model);
+        }
+        fail("option --model pals needs --dim 3");
+    }
     pd::LPS model({.material = cfg.material, .dim = D, .plane = cfg.plane}, bonds);
+    if (cfg.model == "scf") model.apply_shear_correction(body.x);  // LPS with the shear correction factor
     return integrate<D>(cfg, pc, body, bonds, model);
 }
 
@@ -223,7 +243,9 @@ int main(int argc, char** argv)
     const double automatic = std::numeric_limits<double>::quiet_NaN();
     pd::io::Options opt(program, "Explicit dynamics (velocity Verlet) of a point cloud read from CSV; see reports/pd_run.md.");
     const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed]");
-    const std::string& model = opt.add_string("model", "pmb", "material model", {"pmb", "lps"});
+    const std::string& model = opt.add_string("model", "pmb", "material model (scf = LPS with the shear correction factor)",
+                                              {"pmb", "lps", "scf", "pals", "correspondence"});
+    const double& hourglass = opt.add("hourglass", 0.0, "Littlewood hourglass coefficient C_hg of correspondence (source: 0.02)");
     const int& dim = opt.add_int("dim", 3, "dimension (x, then y, then z are used)");
     const double& K = opt.add("K", automatic, "bulk modulus, with --G (or give --E --nu)", "Pa");
     const double& G = opt.add("G", automatic, "shear modulus, with --K", "Pa");
@@ -275,6 +297,8 @@ int main(int argc, char** argv)
         cfg.material = pd::Elastic::from_E_nu(E, dim == 1 ? 0.0 : nu);  // 1D: only E enters
     }
     cfg.model = model;
+    cfg.hourglass = hourglass;
+    if (hourglass < 0) fail("option --hourglass must be >= 0, got " + std::to_string(hourglass));
     cfg.measure = dim == 2 ? thickness : dim == 1 ? area : 1.0;
     cfg.rho = rho;
     cfg.delta = delta;

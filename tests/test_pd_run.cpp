@@ -149,9 +149,9 @@ TEST(PdRun, RigidTranslationIsExact)
                               }));
     const double K = 200e9 / (3 * (1 - 2 * 0.25)), s_roundoff = 1e-14;
     const double strain_bound = 4.5 * K * s_roundoff * s_roundoff * n * n * n * dx * dx * dx;
-    for (const std::string model : {"pmb", "lps"}) {
+    for (const std::string model : {"pmb", "lps", "scf", "pals", "correspondence"}) {
         const Result r = pd_run("rigid_" + model, "--input " + p.string() + steel + " --model " + model +
-                                                      " --delta 3e-3 --steps 20 --energy-every 5");
+                                                      " --delta 3e-3 --steps 20 --energy-every 5 --hourglass 0.02");
         ASSERT_EQ(r.status, 0) << r.err;
         const auto energy = read_csv(r.dir / "energy.csv");
         ASSERT_EQ(energy.rows.size(), 5u);  // steps 0, 5, 10, 15, 20
