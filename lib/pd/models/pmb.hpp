@@ -13,6 +13,7 @@
 #include "pd/material.hpp"
 #include "pd/parallel.hpp"
 
+#include <stdexcept>
 #include <vector>
 
 namespace pd {
@@ -47,6 +48,14 @@ struct PMB {
           coef(bonds.size()), length(bonds.length.data())
     {
         for (std::size_t k = 0; k < bonds.size(); ++k) coef[k] = c * bonds.omega[k] * bonds.volume[k] / bonds.length[k];
+    }
+
+    // Bond-wise micromodulus c_ij = factor[k] c (surface correction, models/surface_correction.hpp);
+    // factor has one entry per bond (bonds.size()). Not calling it leaves the model unchanged.
+    void scale_bonds(const std::vector<double>& factor)
+    {
+        if (factor.size() != coef.size()) throw std::invalid_argument("PMB::scale_bonds: one factor per bond expected");
+        for (std::size_t k = 0; k < coef.size(); ++k) coef[k] *= factor[k];
     }
 
     // c omega V s / |Y| with s = (|Y| - |xi|)/|xi|: force on i is this times Y.
