@@ -8,7 +8,7 @@
 // displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
 // c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14).
 // Run:    pd_run --input cloud.csv --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3 --steps 1000
-//         [--model pmb|lps|scf|pals|correspondence] [--hourglass C] [--dim 1|2|3] [--output-steps 0,500,1000] [--vtu-every 100] [--help]
+//         [--model pmb|lps|scf|pals|correspondence] [--hourglass C] [--surface-correction none|energy] [--dim 1|2|3] [--output-steps 0,500,1000] [--vtu-every 100] [--help]
 // Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J),
 //         DIR/state_stepNNNN.csv (node_id,x,y,z,ux,uy,uz,vx,vy,vz), DIR/state_stepNNNN.vtu + state.pvd.
 // Exit status: 0 done; 2 invalid input (one line naming the option or file:line); 3 unstable run
@@ -21,6 +21,7 @@
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
+#include "pd/models/surface_correction.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
@@ -41,6 +42,7 @@ constexpr double dt_safety = 0.5;  // Silling & Askari's normal safety factor (s
 struct Run {
     std::string model;
     double hourglass = 0;  // C_hg [-]
+    pd::SurfaceCorrectionMethod surface = pd::SurfaceCorrectionMethod::none;
     pd::Elastic material;
     pd::Plane plane = pd::Plane::stress;
     double measure = 1, rho = 0, delta = 0, dx = 0;  // [m^(3-D)], [kg/m^3], [m], [m] (0: no lattice)
@@ -213,6 +215,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
 
     if (cfg.model == "pmb") {
         pd::PMB model(pmb, cfg.influence, bonds);
+        pd::apply_surface_correction(model, body, bonds, cfg.surface);  // none: no change
         return integrate<D>(cfg, pc, body, bonds, model);
     }
     if (cfg.model == "correspondence") {
@@ -245,6 +248,8 @@ int main(int argc, char** argv)
     const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed]");
     const std::string& model = opt.add_string("model", "pmb", "material model (scf = LPS with the shear correction factor)",
                                               {"pmb", "lps", "scf", "pals", "correspondence"});
+    const std::string& surface = opt.add_string("surface-correction", "none",
+                                                "surface correction of PMB (energy: Madenci-Oterkus, needs --dx)", {"none", "energy"});
     const double& hourglass = opt.add("hourglass", 0.0, "Littlewood hourglass coefficient C_hg of correspondence (source: 0.02)");
     const int& dim = opt.add_int("dim", 3, "dimension (x, then y, then z are used)");
     const double& K = opt.add("K", automatic, "bulk modulus, with --G (or give --E --nu)", "Pa");
@@ -280,6 +285,8 @@ int main(int argc, char** argv)
     if (opt.given("thickness") && dim != 2) fail("option --thickness applies to --dim 2 only");
     if (opt.given("area") && dim != 1) fail("option --area applies to --dim 1 only");
     if (pv == "pa-pdlammps" && !opt.given("dx")) fail("option --partial-volume pa-pdlammps needs --dx (the lattice spacing)");
+    if (surface == "energy" && !opt.given("dx")) fail("option --surface-correction energy needs --dx (the lattice spacing)");
+    if (surface == "energy" && model != "pmb") fail("option --surface-correction energy applies to --model pmb only");
 
     Run cfg;
     cfg.plane = plane == "strain" ? pd::Plane::strain : pd::Plane::stress;
@@ -298,6 +305,7 @@ int main(int argc, char** argv)
     }
     cfg.model = model;
     cfg.hourglass = hourglass;
+    cfg.surface = pd::parse_surface_correction(surface);
     if (hourglass < 0) fail("option --hourglass must be >= 0, got " + std::to_string(hourglass));
     cfg.measure = dim == 2 ? thickness : dim == 1 ? area : 1.0;
     cfg.rho = rho;
