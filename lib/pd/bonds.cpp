@@ -118,6 +118,20 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     return b;
 }
 
+std::vector<std::array<long, 3>> full_family_offsets(double delta, double dx, int dim)
+{
+    const double reach = delta * (1 + horizon_roundoff);
+    const long M = static_cast<long>(std::floor(reach / dx));
+    std::vector<std::array<long, 3>> offsets;
+    for (long a = -M; a <= M; ++a)
+        for (long b = (dim > 1 ? -M : 0); b <= (dim > 1 ? M : 0); ++b)
+            for (long c = (dim > 2 ? -M : 0); c <= (dim > 2 ? M : 0); ++c) {
+                const long n2 = a * a + b * b + c * c;
+                if (n2 > 0 && dx * std::sqrt(double(n2)) <= reach) offsets.push_back({a, b, c});
+            }
+    return offsets;
+}
+
 template Bonds build_bonds<1>(const Body<1>&, double, const BondOptions&);
 template Bonds build_bonds<2>(const Body<2>&, double, const BondOptions&);
 template Bonds build_bonds<3>(const Body<3>&, double, const BondOptions&);

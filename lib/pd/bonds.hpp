@@ -8,6 +8,7 @@
 #include "pd/influence.hpp"
 #include "pd/lattice.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -50,5 +51,9 @@ inline constexpr double horizon_roundoff = 1e-10;
 
 template <int D>
 Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt = {});
+
+// Integer offsets n != 0 of the full family of a simple-cubic lattice of spacing dx in `dim`
+// dimensions (|n| dx <= delta with the roundoff rule of build_bonds); unused components are 0.
+std::vector<std::array<long, 3>> full_family_offsets(double delta, double dx, int dim);
 
 }  // namespace pd

@@ -56,16 +56,12 @@ double horizon_moment(const Influence& w, int p, double delta, int dim, double m
 
 double lattice_moment(const Influence& w, int p, double delta, double dx, int dim, double measure)
 {
-    const long reach = static_cast<long>(std::floor(delta / dx * (1 + horizon_roundoff)));
     const double volume = std::pow(dx, dim) * measure;
     double sum = 0;
-    for (long a = -reach; a <= reach; ++a)
-        for (long b = (dim > 1 ? -reach : 0); b <= (dim > 1 ? reach : 0); ++b)
-            for (long c = (dim > 2 ? -reach : 0); c <= (dim > 2 ? reach : 0); ++c) {
-                const double r = dx * std::sqrt(double(a * a + b * b + c * c));
-                if (r == 0 || r > delta * (1 + horizon_roundoff)) continue;
-                sum += w(r, delta) * std::pow(r, p) * volume;
-            }
+    for (const auto& n : full_family_offsets(delta, dx, dim)) {
+        const double r = dx * std::sqrt(double(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+        sum += w(r, delta) * std::pow(r, p) * volume;
+    }
     return sum;
 }
 

@@ -83,6 +83,20 @@ NodeSet select(const Body<D>& body, const Region<D>& region, const std::string& 
     return s;
 }
 
+GrippedBar gripped_bar(double L, double W, double T, double dx, double grip)
+{
+    // A grip of a whole number of cells (e.g. 2 delta with integer m) must not gain a layer from
+    // the round-off of grip/dx: shrink by the relative tolerance of the horizon rule first.
+    constexpr double roundoff = 1e-10;
+    GrippedBar bar;
+    bar.grip_layers = static_cast<long>(std::ceil(grip / dx * (1 - roundoff)));
+    const double g = bar.grip_layers * dx;
+    bar.body = box<3>({{-g, 0, 0}}, {{L + g, W, T}}, dx);
+    bar.left = select<3>(bar.body, [](const Vec<3>& p) { return p[0] < 0; }, "left grip");
+    bar.right = select<3>(bar.body, [L](const Vec<3>& p) { return p[0] > L; }, "right grip");
+    return bar;
+}
+
 template Body<1> fill<1>(const Vec<1>&, const Vec<1>&, double, const Region<1>&, double);
 template Body<2> fill<2>(const Vec<2>&, const Vec<2>&, double, const Region<2>&, double);
 template Body<3> fill<3>(const Vec<3>&, const Vec<3>&, double, const Region<3>&, double);

@@ -65,4 +65,13 @@ Region<2> in_polygon(Polygon poly);
 template <int D>
 NodeSet select(const Body<D>& body, const Region<D>& region, const std::string& what = "node set");
 
+// Bar [0, L] x [0, W] x [0, T] (x axial) on a lattice dx, plus grip zones of ceil(grip/dx) layers
+// added OUTSIDE each end: `left` holds the nodes with x < 0, `right` those with x > L.
+struct GrippedBar {
+    Body<3> body;
+    NodeSet left, right;
+    long grip_layers = 0;
+};
+GrippedBar gripped_bar(double L, double W, double T, double dx, double grip);
+
 }  // namespace pd

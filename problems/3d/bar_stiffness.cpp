@@ -144,16 +144,17 @@ static int run(int argc, char** argv)
     for (int n : ns) {
         // 2. Discretisation: bar plus ceil(grip delta/dx) grip layers outside each end.
         Specimen s{L, W, T, strain * L, T / n, m * T / n, {}, {}, {}, {}, {}};
-        const long ng = static_cast<long>(std::ceil(grip * m - 1e-9)), nx = std::lround(L / s.dx);
-        s.body = pd::box<3>({-ng * s.dx, 0, 0}, {L + ng * s.dx, W, T}, s.dx);
+        pd::GrippedBar bar = pd::gripped_bar(L, W, T, s.dx, grip * s.delta);
+        s.body = std::move(bar.body);
+        s.left = std::move(bar.left);
+        s.right = std::move(bar.right);
+        const long nx = std::lround(L / s.dx);
         const long ia = std::lround((L / 2 - s.delta) / s.dx - 0.5), ib = std::lround((L / 2 + s.delta) / s.dx - 0.5);
         const long a = std::clamp(ia, 0L, nx - 1), b = std::clamp(ib, 0L, nx - 1);
         s.dist = (b - a) * s.dx;
         for (std::size_t i = 0; i < s.body.size(); ++i) {
             const double x = s.body.x.c[0][i];
             const long layer = std::lround(x / s.dx - 0.5);
-            if (x < 0) s.left.push_back(static_cast<int>(i));
-            if (x > L) s.right.push_back(static_cast<int>(i));
             if (layer == a) s.sec_a.push_back(static_cast<int>(i));
             if (layer == b) s.sec_b.push_back(static_cast<int>(i));
         }

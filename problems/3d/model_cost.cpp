@@ -126,11 +126,11 @@ static int run(int argc, char** argv)
 
     // 2. Discretisation: bar plus clamp zones ceil(2 delta/dx) cells long at both ends (outside).
     const double dx = H / n, delta = m * dx;
-    const double zone = std::ceil(2 * m - 1e-9) * dx;  // [m]
-    const pd::Body<3> body = pd::box<3>({-zone, 0, 0}, {L + zone, W, H}, dx);
+    const pd::GrippedBar bar = pd::gripped_bar(L, W, H, dx, 2 * delta);
+    const pd::Body<3>& body = bar.body;
     pd::Bonds bonds = pd::build_bonds(body, delta);
-    const pd::NodeSet fixed = pd::select(body, pd::Region<3>([](const pd::Vec<3>& p) { return p[0] < 0; }), "fixed zone");
-    const pd::NodeSet pulled = pd::select(body, pd::Region<3>([&](const pd::Vec<3>& p) { return p[0] > L; }), "pulled zone");
+    const pd::NodeSet& fixed = bar.left;
+    const pd::NodeSet& pulled = bar.right;
 
     // 3. Models (all on the same bonds) and the common time step.
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);

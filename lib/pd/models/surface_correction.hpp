@@ -88,22 +88,15 @@ std::array<double, D> full_family_energy(const PMB& pmb, const Body<D>& body, co
                 throw std::invalid_argument("surface correction: bond coefficients differ at equal |xi| (non-uniform lattice "
                                             "or already scaled model); use Reference::classical on the unscaled model");
         }
-    const double reach = bonds.delta * (1 + horizon_roundoff);  // the family rule of build_bonds
-    const long M = static_cast<long>(std::floor(reach / dx));
-    long count = 1;
-    for (int d = 0; d < D; ++d) count *= 2 * M + 1;
     std::array<double, D> W{};
-    for (long q = 0; q < count; ++q) {
+    for (const auto& n : full_family_offsets(bonds.delta, dx, D)) {
         Vec<D> xi;
-        long rest = q, key = 0;
+        long key = 0;
         for (int d = 0; d < D; ++d) {
-            const long n = rest % (2 * M + 1) - M;
-            rest /= 2 * M + 1;
-            xi[d] = n * dx;
-            key += n * n;
+            xi[d] = n[d] * dx;
+            key += n[d] * n[d];
         }
         const double L = norm(xi);
-        if (key == 0 || L > reach) continue;
         const auto it = coef_of.find(key);
         if (it == coef_of.end())
             throw std::invalid_argument("surface correction: the body has no bond with |xi|^2 = " + std::to_string(key) +
