@@ -13,11 +13,10 @@
 //         DIR/state_stepNNNN.csv (node_id,x,y,z,ux,uy,uz,vx,vy,vz), DIR/state_stepNNNN.vtu + state.pvd.
 // Exit status: 0 done; 2 invalid input (one line naming the option or file:line); 3 unstable run
 // (files written before the blow-up are kept). User page: reports/pd_run.md.
-#include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
+#include "pd/io/state_output.hpp"
 #include "pd/io/point_cloud.hpp"
 #include "pd/io/timer.hpp"
-#include "pd/io/vtu.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
@@ -27,7 +26,6 @@
 #include "pd/time/verlet.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -55,67 +53,6 @@ struct Run {
 };
 
 [[noreturn]] void fail(const std::string& msg) { pd::io::fail_input(program, msg); }
-
-// "0,100,400" -> sorted unique steps in [0, steps]; "" -> {steps}; "none" -> {}.
-std::vector<long> parse_steps(const std::string& text, long steps)
-{
-    if (text == "none") return {};
-    if (text.empty()) return {steps};
-    std::vector<long> list;
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', begin), text.size());
-        const std::string item = text.substr(begin, comma - begin);
-        long s = 0;
-        const auto r = std::from_chars(item.data(), item.data() + item.size(), s);
-        if (item.empty() || r.ec != std::errc() || r.ptr != item.data() + item.size())
-            fail("option --output-steps expects step numbers separated by commas, got '" + text + "'");
-        if (s < 0) fail("option --output-steps: step " + item + " is negative");
-        if (s > steps) fail("option --output-steps: step " + item + " is beyond --steps " + std::to_string(steps));
-        list.push_back(s);
-        begin = comma + 1;
-    }
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    return list;
-}
-
-std::filesystem::path step_file(const Run& cfg, long n, const char* ext)
-{
-    char name[64];
-    std::snprintf(name, sizeof name, "state_step%04ld.%s", n, ext);
-    return cfg.out / name;
-}
-
-// State at step n: reference x,y,z as read (dims beyond D too), u and v (0 beyond D), 17 digits.
-template <int D, class Sim>
-void write_state(const Run& cfg, long n, const pd::io::PointCloud& pc, const Sim& sim)
-{
-    pd::io::CsvWriter csv(step_file(cfg, n, "csv"), {"node_id", "x", "y", "z", "ux", "uy", "uz", "vx", "vy", "vz"}, false);
-    for (std::size_t i = 0; i < pc.size(); ++i) {
-        std::vector<pd::io::CsvCell> row{i, pc.x[0][i], pc.x[1][i], pc.x[2][i]};
-        for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? sim.u.c[d][i] : 0.0);
-        for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? sim.v.c[d][i] : 0.0);
-        csv.row(row);
-    }
-    csv.flush();
-}
-
-template <int D, class Sim>
-void write_vtu(const Run& cfg, long n, const pd::io::PointCloud& pc, const Sim& sim, pd::io::PvdWriter& pvd)
-{
-    const std::vector<double> zero;  // components beyond D: padded with zeros by the writer
-    auto comp = [&](const pd::Field<D>& f, int d) -> const std::vector<double>& { return d < D ? f.c[d] : zero; };
-    pd::io::VtuWriter w(step_file(cfg, n, "vtu"));
-    w.points(pc.x[0], pc.x[1], pc.x[2]);
-    w.vector("displacement_m", comp(sim.u, 0), comp(sim.u, 1), comp(sim.u, 2));
-    w.vector("velocity_m_per_s", comp(sim.v, 0), comp(sim.v, 1), comp(sim.v, 2));
-    w.scalar("block", std::vector<double>(pc.block.begin(), pc.block.end()));
-    w.scalar("fixed", std::vector<double>(pc.fixed.begin(), pc.fixed.end()));
-    w.time(sim.t);
-    w.write();
-    pvd.add(sim.t, w.path());
-}
 
 // 4.-5. Initial and boundary conditions, integration and output. Returns the exit status.
 template <int D, class Model>
@@ -151,8 +88,8 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
         if (!(e_step || s_step || v_step)) return;
         last = sim.check_energy();  // throws pd::Unstable before a blown-up state is written
         if (e_step) energy.row({n, sim.t, last.kinetic, last.strain, last.external_work, last.total()});
-        if (s_step) write_state<D>(cfg, n, pc, sim);
-        if (v_step) write_vtu<D>(cfg, n, pc, sim, *pvd);
+        if (s_step) pd::io::write_state<D>(cfg.out, n, pc, sim.u, sim.v);
+        if (v_step) pd::io::write_state_vtu<D>(cfg.out, n, sim.t, pc, sim.u, sim.v, *pvd);
     };
 
     pd::io::Timer timer;
@@ -181,14 +118,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
 template <int D>
 int run(Run cfg, const pd::io::PointCloud& pc)
 {
-    pd::Body<D> body;
-    body.dx = cfg.dx;
-    body.measure = cfg.measure;
-    for (std::size_t i = 0; i < pc.size(); ++i) {
-        pd::Vec<D> p;
-        for (int d = 0; d < D; ++d) p[d] = pc.x[d][i];
-        body.push(p, pc.volume[i]);
-    }
+    const pd::Body<D> body = pd::io::to_body<D>(pc, cfg.dx, cfg.measure);
     pd::BondOptions family;
     family.influence = cfg.influence;
     family.partial_volume = cfg.partial_volume;
@@ -317,7 +247,11 @@ int main(int argc, char** argv)
     cfg.steps = steps;
     cfg.energy_every = energy_every;
     cfg.vtu_every = vtu_every;
-    cfg.output_steps = parse_steps(out_steps, steps);
+    try {
+        cfg.output_steps = pd::io::parse_output_steps(out_steps, steps);
+    } catch (const std::invalid_argument& e) {
+        fail(e.what());
+    }
     cfg.out = out;
     pd::set_threads(threads);
 

@@ -15,6 +15,8 @@
 // line and column parts are left out when they do not apply, e.g. an unreadable file).
 #pragma once
 
+#include "pd/lattice.hpp"
+
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -47,5 +49,21 @@ struct PointCloud {
 
 // Reads and validates a point cloud for a `dim`-dimensional run (dim = 1, 2 or 3; see header).
 PointCloud read_point_cloud(const std::filesystem::path& path, int dim);
+
+// The first D coordinates and the volumes as a Body; dx is the lattice spacing (0: none) and
+// measure the 2D thickness [m] or 1D cross-section [m^2] implied by the volumes.
+template <int D>
+Body<D> to_body(const PointCloud& pc, double dx, double measure)
+{
+    Body<D> body;
+    body.dx = dx;
+    body.measure = measure;
+    for (std::size_t i = 0; i < pc.size(); ++i) {
+        Vec<D> p;
+        for (int d = 0; d < D; ++d) p[d] = pc.x[d][i];
+        body.push(p, pc.volume[i]);
+    }
+    return body;
+}
 
 }  // namespace pd::io
