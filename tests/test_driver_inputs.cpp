@@ -2,6 +2,8 @@
 // option (DESIGN.md, "Problem drivers"). Runs the built executables.
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -16,9 +18,10 @@ struct Outcome {
 };
 Outcome run(const std::string& exe, const std::string& args)
 {
-    const std::string err_path = ::testing::TempDir() + "driver_err.txt";
-    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --out " + ::testing::TempDir() +
-                            "driver_out > /dev/null 2> " + err_path;
+    const std::string dir = pd_test::scratch_dir().string();
+    const std::string err_path = dir + "/driver_err.txt";
+    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --out " + dir +
+                            "/driver_out > /dev/null 2> " + err_path;
     const int rc = std::system(cmd.c_str());
     std::ifstream in(err_path);
     std::stringstream ss;

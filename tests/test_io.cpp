@@ -9,11 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"
+
 #include <bit>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -28,7 +31,13 @@ void parse(Options& opt, const std::vector<std::string>& args)
     opt.parse(static_cast<int>(argv.size()), argv.data());
 }
 
-std::string temp_path(const std::string& name) { return ::testing::TempDir() + "pd_io_test/" + name; }
+// A path in this test's scratch directory; its parent directory exists.
+std::string temp_path(const std::string& name)
+{
+    const auto p = pd_test::scratch_dir() / name;
+    std::filesystem::create_directories(p.parent_path());
+    return p.string();
+}
 
 std::string slurp(const std::string& path)
 {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"
+
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -23,7 +25,7 @@ using pd::io::read_csv;
 
 namespace {
 
-fs::path base() { return fs::path(::testing::TempDir()) / "pd_run_test"; }
+fs::path base() { return pd_test::scratch_dir(); }
 
 std::string slurp(const fs::path& p)
 {
