@@ -10,11 +10,19 @@
 // split e_d = e - theta |xi|/2 with kappa_2D = K + G/3 (plane strain) or 9KG/(3K+4G) (plane
 // stress): an isotropic stretch s gives W = 2 kappa_2D s^2 and a pure shear eps = diag(a, -a)
 // gives W = 2 G a^2, the classical in-plane energies (tests/test_models.cpp checks both).
-// Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y|. m_i is fixed at the reference configuration;
-// theta_i and the forces sum only intact bonds. As in Peridigm, m_i is not recomputed after
-// damage; then sum_intact omega e_d |xi| V != 0 and the force is no longer the exact gradient of
-// the reported W (a few % with ~20 % of bonds broken), so energy totals of damaged LPS runs are
-// approximate beyond the energy released by the broken bonds.
+// Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y|; theta_i and the forces sum only intact bonds.
+// Damage rule (Params::weighted_volume; tests/test_damage_models.cpp):
+//   intact (default): m_i (and SCF_i when it was computed from positions) sums the intact bonds;
+//     recompute(bonds) refreshes them after bonds break (Explicit calls it, time/verlet.hpp). The
+//     damaged body is then exactly the body built without the broken bonds, and the force is the
+//     gradient of the reported W (variational), as for PALS (recomputed multipliers) and
+//     correspondence (K over intact bonds).
+//   reference (Peridigm): m_i and SCF_i stay those of the undamaged family, recompute is a no-op.
+//     Then sum_intact omega e_d |xi| V != 0 and the force is no longer the exact gradient of the
+//     reported W (a few % with ~20 % of bonds broken): energy totals of damaged runs are
+//     approximate beyond the energy released by the broken bonds (non-variational).
+// With `intact`, a node left with few bonds has a small m_i and hence a stiffer response, which
+// can lower the critical time step after damage.
 // Optional shear correction (spec/000b sec. 1.3, eq. 4.14): apply_shear_correction sets
 // alpha_i = SCF_i a_D G / m_i with SCF_i from models/scf.hpp (Peridigm's probe); W and the force
 // both use alpha_i, so the force stays the gradient of W. Without it (the default) every member
@@ -27,6 +35,7 @@
 #include "pd/models/scf.hpp"
 #include "pd/parallel.hpp"
 
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -38,6 +47,8 @@ struct LPS {
         Elastic material;
         int dim = 3;
         Plane plane = Plane::strain;   // 2D reduction
+        enum class WeightedVolume { intact, reference };  // m_i after damage (see header)
+        WeightedVolume weighted_volume = WeightedVolume::intact;
     };
     int dim = 3;
     double kappa = 0;              // kappa_D [Pa]
@@ -49,20 +60,29 @@ struct LPS {
     std::vector<double> wV;        // omega V_j per bond (influence times partner volume) [m^3]
     const Bonds* bonds = nullptr;
     std::vector<double> scf;       // shear correction factor SCF_i [-]; empty when not applied
+    Params::WeightedVolume weighted_volume = Params::WeightedVolume::intact;
+    // SCF from positions, re-evaluated by recompute (intact rule); empty for given factors.
+    std::function<std::vector<double>(const Bonds&)> scf_source;
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
         : dim(p.dim), kappa(kappa_dim(p.material, p.dim, p.plane)), G(p.material.G),
-          m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), wV(b.size()), bonds(&b)
+          m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), wV(b.size()), bonds(&b),
+          weighted_volume(p.weighted_volume)
     {
         for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
-        const double a_D = detail::scf_shear_constant(dim);
-        for (std::size_t i = 0; i < b.nodes(); ++i) {
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) m[i] += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
-            const double inv_m = m[i] > 0 ? 1.0 / m[i] : 0.0;  // isolated node: no force
-            p_coef[i] = dim * kappa * inv_m;
-            alpha[i] = a_D * G * inv_m;
-        }
+        weighted_volumes(b);
+    }
+
+    // After bonds broke: with the intact rule, m_i over the intact bonds (4.8), p_coef, alpha and
+    // a position-based SCF_i rebuilt; with the reference rule nothing changes (see header).
+    void recompute(const Bonds& b)
+    {
+        bonds = &b;
+        if (weighted_volume == Params::WeightedVolume::reference) return;
+        weighted_volumes(b);
+        if (scf_source) scf = scf_source(b);
+        if (!scf.empty()) apply_factors(scf);
     }
 
     // alpha_i = SCF_i a_D G / m_i (4.14), one factor per node [-]. Replaces any earlier correction
@@ -72,16 +92,20 @@ struct LPS {
         if (factor.size() != m.size()) throw std::invalid_argument("LPS::apply_shear_correction: one factor per node expected");
         for (double s : factor)
             if (!(s > 0)) throw std::invalid_argument("LPS::apply_shear_correction: SCF must be > 0");
-        const double a_D = detail::scf_shear_constant(dim);
-        for (std::size_t i = 0; i < m.size(); ++i) {
-            const double inv_m = m[i] > 0 ? 1.0 / m[i] : 0.0;
-            alpha[i] = a_D * G * inv_m * factor[i];  // same product as the constructor, times SCF_i
-        }
+        apply_factors(factor);
         scf = factor;
+        scf_source = nullptr;
     }
-    // The same with Peridigm's SCF computed from the reference positions x [m] (models/scf.hpp).
+    // The same with Peridigm's SCF computed from the reference positions x [m] (models/scf.hpp),
+    // with m_i of this model's rule; x must outlive the model (recompute re-evaluates it).
     template <int D>
-    void apply_shear_correction(const Field<D>& x) { apply_shear_correction(shear_correction_factor(*bonds, x, dim)); }
+    void apply_shear_correction(const Field<D>& x)
+    {
+        const bool intact_m = weighted_volume == Params::WeightedVolume::intact;
+        auto source = [&x, d = dim, intact_m](const Bonds& b) { return shear_correction_factor(b, x, d, scf_gamma, intact_m); };
+        apply_shear_correction(source(*bonds));
+        scf_source = source;
+    }
 
     // theta_i = (D/m_i) sum_j omega |xi| e V_j over intact bonds (lane order of bond_loop.hpp).
     template <int D>
@@ -121,6 +145,31 @@ struct LPS {
     }
 
 private:
+    // m_i (4.8) over the whole family, or over the intact bonds under the intact rule; then
+    // p_coef = D kappa / m_i and alpha = a_D G / m_i (no SCF).
+    void weighted_volumes(const Bonds& b)
+    {
+        const bool skip_broken = b.has_damage() && weighted_volume == Params::WeightedVolume::intact;
+        const double a_D = detail::scf_shear_constant(dim);
+        for (std::size_t i = 0; i < b.nodes(); ++i) {
+            m[i] = 0;
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+                if (!skip_broken || b.intact[k]) m[i] += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
+            const double inv_m = m[i] > 0 ? 1.0 / m[i] : 0.0;  // isolated node: no force
+            p_coef[i] = dim * kappa * inv_m;
+            alpha[i] = a_D * G * inv_m;
+        }
+    }
+    // alpha_i = SCF_i a_D G / m_i (4.14).
+    void apply_factors(const std::vector<double>& factor)
+    {
+        const double a_D = detail::scf_shear_constant(dim);
+        for (std::size_t i = 0; i < m.size(); ++i) {
+            const double inv_m = m[i] > 0 ? 1.0 / m[i] : 0.0;
+            alpha[i] = a_D * G * inv_m * factor[i];  // same product as the constructor, times SCF_i
+        }
+    }
+
     template <bool Damaged, int D>
     void dilatation(const Bonds& b, const Field<D>& y)
     {

@@ -25,7 +25,9 @@
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y| (omega and sigma are even in xi), through
 // bond_scalar with t regrouped as in Peridigm: t = p_i omega_i |xi| + 2G sigma_i (e - theta_i
 // |xi|/3), p_i = (K + 2G m_sigma/9) theta_i - (2G/3)(sigma_i x)•e, m_sigma = (sigma_i x)•x.
-// Multipliers use the intact bonds; after damage call recompute(bonds).
+// Multipliers use the intact bonds; after damage call recompute(bonds) (Explicit does it whenever
+// bonds break, time/verlet.hpp): the damaged body is then the body built without the broken bonds
+// (tests/test_damage_models.cpp). Before recompute the multipliers are those of the old families.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"

@@ -7,6 +7,8 @@
 // 9E/(pi delta^3 t)); 1D 2E/(A delta^2). Calibration `lattice` replaces the continuum M1 by the
 // sum over a full lattice family (influence.hpp), so an interior node of a simple cubic lattice
 // reproduces W = (D^2/2) kappa_D s^2 exactly; `continuum` (default) is the published constant.
+// Damage: a broken bond carries no force (bond_loop.hpp) and PMB has no per-node constant, so a
+// damaged body is exactly the body built without the broken bonds (tests/test_damage_models.cpp).
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"

@@ -27,7 +27,8 @@
 // Deviations from Peridigm, documented: e is evaluated cancellation-free as
 // (|Y|^2 - |xi|^2)/(|Y| + |xi|) (same number in exact arithmetic); when the bonds carry a damage
 // array, theta and N sum only intact bonds (Peridigm's copy ignores damage), while m_i sums the
-// whole family as LPS's m_i does (lps.hpp). 1D has no deviatoric part (a_1 = 0): SCF = 1.
+// whole family as LPS's m_i does under its reference rule, or only the intact bonds with
+// intact_m = true (LPS's default intact rule, lps.hpp). 1D has no deviatoric part (a_1 = 0): SCF = 1.
 // A node whose N_max is 0 (no intact bond, or m_i = 0) gets SCF = 1.
 #pragma once
 #include "pd/bonds.hpp"
@@ -82,9 +83,11 @@ double scf_mode_norm(const Bonds& b, const Field<D>& x, std::size_t i, int a, in
 }  // namespace detail
 
 // SCF_i for every node (header steps 1-4). x: reference positions [m]; dim must equal D.
-// gamma: probe shear strain [-], Peridigm's 1e-6 by default.
+// gamma: probe shear strain [-], Peridigm's 1e-6 by default. intact_m: m_i over the intact bonds
+// only (same as the whole family when the bonds carry no damage).
 template <int D>
-std::vector<double> shear_correction_factor(const Bonds& b, const Field<D>& x, int dim, double gamma = scf_gamma)
+std::vector<double> shear_correction_factor(const Bonds& b, const Field<D>& x, int dim, double gamma = scf_gamma,
+                                            bool intact_m = false)
 {
     if (dim != D) throw std::invalid_argument("shear_correction_factor: dim " + std::to_string(dim) + " != field dimension " + std::to_string(D));
     if (x.size() != b.nodes()) throw std::invalid_argument("shear_correction_factor: positions and bonds differ in node count");
@@ -96,8 +99,10 @@ std::vector<double> shear_correction_factor(const Bonds& b, const Field<D>& x, i
         static constexpr int plane[3][2] = {{0, 1}, {2, 0}, {1, 2}};
         const double a_D = detail::scf_shear_constant(D);
         parallel_for(b.nodes(), [&](std::size_t i) {
-            double m = 0;  // weighted volume over the whole family, as LPS
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) m += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
+            double m = 0;  // weighted volume over the whole family or the intact bonds, as LPS
+            const bool skip_broken = intact_m && b.has_damage();
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+                if (!skip_broken || b.intact[k]) m += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
             if (!(m > 0)) return;
             double N_max = 0;
             for (int md = 0; md < modes; ++md)

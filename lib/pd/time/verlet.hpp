@@ -7,6 +7,8 @@
 // of the constraints (reaction -f times displacement increment, trapezoidal in time, plus the
 // change of kinetic energy of the constrained components, which the constraint supplies).
 // A velocity-prescribed component ends the step at g(t_{n+1}).
+// Damage: bonds break before the force evaluation; a model with recompute(bonds) gets it called
+// whenever bonds broke.
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
 // (initial energy + |external work|) and above a round-off floor (the whole mass moving at
 // 1e-10 m/s: a scene at rest stays quiet), throws Unstable naming the step and the node.
@@ -169,7 +171,14 @@ private:
     void evaluate()
     {
         add_fields(body.x, u, y_);
-        if (damage) broken_bonds += damage->apply(bonds, y_);
+        if (damage) {
+            const long broke = damage->apply(bonds, y_);
+            broken_bonds += broke;
+            // Models with bond-dependent per-node constants (PALS multipliers, LPS m_i and SCF_i)
+            // refresh them over the intact bonds; correspondence recomputes K in its point pass.
+            if constexpr (requires { model.recompute(bonds); })
+                if (broke > 0) model.recompute(bonds);
+        }
         internal_force(model, bonds, y_, f_);
         boundary.external(t, b_);
         for (int d = 0; d < D; ++d)
