@@ -243,72 +243,55 @@ static int run(int argc, char** argv)
     const pd::Body<3> body = pd::box<3>({{0, 0, 0}}, {{n * dx, n * dx, n * dx}}, dx);
     const pd::Bonds bonds = pd::build_bonds(body, delta);
     std::vector<Modes> modes;
-    auto record = [&](const std::string& name, double c, const pd::io::Timer& t, Modes md, double interior_W) {
+    // One model: FD stiffness, spectrum, interior checkerboard energy; the time includes the set-up.
+    auto run_model = [&](const std::string& name, double c, auto&& make, const auto& bd, const pd::Bonds& bb) {
+        pd::io::Timer t;
+        auto model = make();
+        Mat K = stiffness(model, bd, bb, h);
+        Modes md = analyse(K, bd, zero_tol);
         md.model = name;
         md.C_hg = c;
-        md.interior_W = interior_W;
+        md.interior_W = interior_checker_energy(model, bd, bb, E);
         md.wall_s = t.seconds();
         modes.push_back(std::move(md));
+        return K;
     };
 
-    // 3.-5. Models, FD stiffness, spectra. PMB also against its analytic pair-spring matrix.
+    // 3.-5. Models, FD stiffness, spectra. PMB also against its analytic pair-spring matrix; LPS
+    // whenever correspondence runs (the physical scale of "soft").
+    using C3 = pd::Correspondence<3>;
+    using C2 = pd::Correspondence<2>;
     double fd_error = NAN;
     if (wants("pmb")) {
-        pd::io::Timer t;
-        pd::PMB pmb({.material = mat, .dim = 3}, pd::Influence{}, bonds);
-        const Mat K = stiffness(pmb, body, bonds, h);
-        const double c = 18 * mat.K / (std::numbers::pi * std::pow(delta, 4));  // spec/000b V12
-        const Mat Ka = pmb_analytic(body, delta, c);
+        const Mat K = run_model("pmb", NAN, [&] { return pd::PMB({.material = mat, .dim = 3}, pd::Influence{}, bonds); }, body, bonds);
+        const Mat Ka = pmb_analytic(body, delta, 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)));  // c: spec/000b V12
         fd_error = (K - Ka).norm() / Ka.norm();
-        record("pmb", NAN, t, analyse(K, body, zero_tol), interior_checker_energy(pmb, body, bonds, E));
     }
-    const bool lps_ref = wants("lps") || wants("correspondence");  // LPS: the physical scale of "soft"
-    if (lps_ref) {
-        pd::io::Timer t;
-        pd::LPS lps({.material = mat, .dim = 3}, bonds);
-        record("lps", NAN, t, analyse(stiffness(lps, body, bonds, h), body, zero_tol), interior_checker_energy(lps, body, bonds, E));
-    }
-    if (wants("pals")) {
-        pd::io::Timer t;
-        pd::PALS pals({.material = mat}, body, bonds);
-        record("pals", NAN, t, analyse(stiffness(pals, body, bonds, h), body, zero_tol), interior_checker_energy(pals, body, bonds, E));
-    }
-    if (wants("correspondence"))
-        for (double c : C_hg) {
-            pd::io::Timer t;
-            using Corr = pd::Correspondence<3>;
-            Corr corr({.material = mat, .law = Corr::Law::linear, .C_hg = c}, body, bonds);
-            record("correspondence", c, t, analyse(stiffness(corr, body, bonds, h), body, zero_tol),
-                   interior_checker_energy(corr, body, bonds, E));
-        }
-    const pd::Body<2> square = pd::box<2>({{0, 0}}, {{std::max(n2, 1) * dx, std::max(n2, 1) * dx}}, dx, dx);
-    if (n2 > 0 && (wants("correspondence") || wants("lps"))) {
-        const pd::Body<2>& sq = square;
-        const pd::Bonds b2 = pd::build_bonds(sq, delta);
-        if (lps_ref) {
-            pd::io::Timer t;
-            pd::LPS lps({.material = mat, .dim = 2, .plane = pd::Plane::strain}, b2);
-            record("lps", NAN, t, analyse(stiffness(lps, sq, b2, h), sq, zero_tol), interior_checker_energy(lps, sq, b2, E));
-        }
+    const bool lps_ref = wants("lps") || wants("correspondence");
+    if (lps_ref) run_model("lps", NAN, [&] { return pd::LPS({.material = mat, .dim = 3}, bonds); }, body, bonds);
+    if (wants("pals")) run_model("pals", NAN, [&] { return pd::PALS({.material = mat}, body, bonds); }, body, bonds);
+    for (double c : C_hg)
         if (wants("correspondence"))
-            for (double c : C_hg) {
-                pd::io::Timer t;
-                using Corr = pd::Correspondence<2>;
-                Corr corr({.material = mat, .law = Corr::Law::linear, .C_hg = c, .plane = pd::Plane::strain, .measure = dx}, sq, b2);
-                record("correspondence", c, t, analyse(stiffness(corr, sq, b2, h), sq, zero_tol),
-                       interior_checker_energy(corr, sq, b2, E));
-            }
-    }
+            run_model("correspondence", c, [&] { return C3({.material = mat, .law = C3::Law::linear, .C_hg = c}, body, bonds); }, body, bonds);
+    const pd::Body<2> square = pd::box<2>({{0, 0}}, {{std::max(n2, 1) * dx, std::max(n2, 1) * dx}}, dx, dx);
+    const pd::Bonds b2 = pd::build_bonds(square, delta);
+    if (n2 > 0 && lps_ref)
+        run_model("lps", NAN, [&] { return pd::LPS({.material = mat, .dim = 2, .plane = pd::Plane::strain}, b2); }, square, b2);
+    for (double c : C_hg)
+        if (n2 > 0 && wants("correspondence"))
+            run_model("correspondence", c, [&] {
+                return C2({.material = mat, .law = C2::Law::linear, .C_hg = c, .plane = pd::Plane::strain, .measure = dx}, square, b2);
+            }, square, b2);
 
     // 6. Tables, CSVs, checks. Soft modes: non-rigid eigenvalues below 1/10 of the first non-rigid
     // LPS eigenvalue of the same dimension [N/m] (the softest physical mode of the same body).
-    auto find = [&](int dim, const std::string& name, double c) -> const Modes* {
+    auto lps_of = [&](int dim) -> const Modes* {
         for (const Modes& md : modes)
-            if (md.dim == dim && md.model == name && (std::isnan(c) ? std::isnan(md.C_hg) : md.C_hg == c)) return &md;
+            if (md.dim == dim && md.model == "lps") return &md;
         return nullptr;
     };
     for (Modes& md : modes)
-        if (const Modes* lps = find(md.dim, "lps", NAN)) {
+        if (const Modes* lps = lps_of(md.dim)) {
             md.soft = 0;
             for (int k = md.rigid; k < md.lambda.size(); ++k) md.soft += md.lambda(k) < soft_factor * lps->lambda(lps->rigid);
             if (md.soft == 0) continue;
