@@ -99,12 +99,12 @@ struct LPS {
         scf_source = nullptr;
     }
     // The same with Peridigm's SCF computed from the reference positions x [m] (models/scf.hpp),
-    // with m_i of this model's rule; x must outlive the model (recompute re-evaluates it).
+    // with m_i of this model's rule; a copy of x is kept for recompute.
     template <int D>
     void apply_shear_correction(const Field<D>& x)
     {
         const bool intact_m = weighted_volume == Params::WeightedVolume::intact;
-        auto source = [&x, d = dim, intact_m](const Bonds& b) { return shear_correction_factor(b, x, d, scf_gamma, intact_m); };
+        auto source = [x, d = dim, intact_m](const Bonds& b) { return shear_correction_factor(b, x, d, scf_gamma, intact_m); };
         apply_shear_correction(source(*bonds));
         scf_source = source;
     }
