@@ -1,6 +1,6 @@
 // Every model honours bond damage (issue 3). Rule checked here for PMB, LPS, LPS+SCF, PALS and
-// correspondence (linear law with and without Littlewood control, 3D Saint Venant-Kirchhoff), 2D
-// and 3D where the model exists:
+// correspondence (linear law with and without Littlewood control, 3D Saint Venant-Kirchhoff), 1D
+// (PMB, LPS), 2D and 3D where the model exists:
 //   a body whose broken bonds are marked (intact = 0, both directions of a pair) is the same body
 //   built from scratch on a bond list that never had those bonds (BondOptions::keep),
 // i.e. equal internal forces, dilatation, weighted volume, shape tensor K^-1, F, PALS multipliers
@@ -50,7 +50,8 @@ template <int D>
 Body<D> block()
 {
     if constexpr (D == 3) return box<3>({{0, 0, 0}}, {{7 * dx, 6 * dx, 5 * dx}}, dx);
-    else return box<2>({{0, 0}}, {{12 * dx, 10 * dx}}, dx, 1e-3);
+    else if constexpr (D == 2) return box<2>({{0, 0}}, {{12 * dx, 10 * dx}}, dx, 1e-3);
+    else return box<1>({{0}}, {{60 * dx}}, dx, 1e-6);
 }
 
 // About `percent` % of the pairs (hash of the unordered pair) plus every bond of node `lonely`.
@@ -233,6 +234,7 @@ TEST(DamageModels, PMB)
 {
     expect_same_as_scratch(block<3>(), random_pairs(40), make_pmb(3), no_state, 40);
     expect_same_as_scratch(block<2>(), random_pairs(40), make_pmb(2), no_state, 40);
+    expect_same_as_scratch(block<1>(), random_pairs(40), make_pmb(1), no_state, 40);
     expect_cut_halves_independent(block<3>(), make_pmb(3));
     expect_cut_halves_independent(block<2>(), make_pmb(2));
 }
@@ -243,6 +245,7 @@ TEST(DamageModels, LPSIntactWeightedVolume)
     const auto rule = LPS::Params::WeightedVolume::intact;
     expect_same_as_scratch(block<3>(), random_pairs(40), make_lps(3, rule, false), lps_state, 40);
     expect_same_as_scratch(block<2>(), random_pairs(40), make_lps(2, rule, false), lps_state, 40);
+    expect_same_as_scratch(block<1>(), random_pairs(40), make_lps(1, rule, false), lps_state, 40);
     expect_cut_halves_independent(block<3>(), make_lps(3, rule, false));
     expect_cut_halves_independent(block<2>(), make_lps(2, rule, false));
 }
