@@ -88,7 +88,7 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
     const pd::Body<3>& body = s.g.body;
     pd::DynamicRelaxation<3, Model> adr(body, bonds, model, bound);
     adr.safety = safety * pd::ref::max_tangent_ratio(law, mat.K, mat.G, 1 + strain);  // cover the stiffening
-    pd::Field<3> u(body.size()), u_prev(body.size()), y(body.size());
+    pd::Field<3> u(body.size()), u_old(body.size()), y(body.size());  // u_old: converged field of step k - 2 (0: unloaded)
     for (std::size_t i = 0; i < body.size(); ++i) {  // step 1 guess: uniform uniaxial field of the first step
         const double e = strain / steps;
         u.c[0][i] = e * s.L * std::clamp(body.x.c[0][i] / s.L, 0.0, 1.0);
@@ -101,11 +101,12 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
         pd::Boundary<3> bc;
         bc.prescribe({pd::Prescribed::Kind::displacement, s.g.left, 0, pd::TimeFunction::constant(0)});
         bc.prescribe({pd::Prescribed::Kind::displacement, s.g.right, 0, pd::TimeFunction::constant(U)});
-        const pd::Field<3> u_last = u;
-        if (k > 1)
+        if (k > 1) {  // secant predictor from the converged fields of steps k - 1 and k - 2
+            const pd::Field<3> u_km1 = u;
             for (int d = 0; d < 3; ++d)
-                for (std::size_t i = 0; i < body.size(); ++i) u.c[d][i] = 2 * u.c[d][i] - u_prev.c[d][i];  // secant predictor
-        u_prev = u_last;
+                for (std::size_t i = 0; i < body.size(); ++i) u.c[d][i] = 2 * u.c[d][i] - u_old.c[d][i];
+            u_old = u_km1;
+        }
         const pd::RelaxationResult r = adr.solve(u, bc, 0, tol, max_iter);
         if (!r.converged) {
             run.converged = false;
