@@ -63,3 +63,19 @@ TEST(DriverInputs, HelpExitsZero)
 {
     for (const char* exe : {"bar_modes_1d", "wave_block_3d", "pd_run"}) EXPECT_EQ(run(exe, "--help").status, 0) << exe;
 }
+
+// large_stretch_3d: its own options (n >= 2, steps >= 1, strain > 0, tol > 0) and nu.
+TEST(DriverInputs, LargeStretchRejectsInvalidOptions)
+{
+    const std::pair<const char*, const char*> cases[] = {
+        {"--E -1", "--E"},     {"--n 1", "--n"},         {"--steps 0", "--steps"}, {"--strain 0", "--strain"},
+        {"--tol -1", "--tol"}, {"--model fem", "--model"}, {"--bogus 1", "--bogus"}, {"--nu 0.5", "nu"},
+    };
+    for (const auto& [args, name] : cases) {
+        const Outcome o = run("large_stretch_3d", std::string("--quick ") + args);
+        EXPECT_EQ(o.status, 2) << args;
+        EXPECT_EQ(lines(o.err), 1) << args << ": " << o.err;
+        EXPECT_NE(o.err.find(name), std::string::npos) << args << ": " << o.err;
+    }
+    EXPECT_EQ(run("large_stretch_3d", "--help").status, 0);
+}
