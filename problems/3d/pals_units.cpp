@@ -139,12 +139,12 @@ double quasi_static(const Scene& s, Model& model, const pd::Field<3>& bound, dou
         u.c[0][i] = s.U * std::clamp(x / s.L, 0.0, 1.0);
         for (int d : {1, 2}) u.c[d][i] = -inside * nu * eps * (s.bar.body.x.c[d][i] - (d == 1 ? s.W : s.T) / 2);
     }
-    const pd::RelaxationResult r = adr.solve(u, bc, 0, 1e-6, 200000);  // tol as bar_stiffness
+    const pd::RelaxationResult r = adr.solve(u, bc, 0, 1e-6, 200000);  // tol as bar_stiffness; not converged: NaN (fails --check)
     const Measure q = measure(s, adr.internal_force_density(), u);
     return r.converged ? q.sigma / q.eps : NAN;
 }
 
-// Builds model `name` on scene s and calls fn(model, ADR row-sum bound).
+// Builds model `name` on scene s and calls fn(model, ADR row-sum bound, PMB micromodulus c for dt_crit).
 template <class Fn>
 void with_model(const std::string& name, Scene& s, const pd::Elastic& mat, double C_hg, Fn&& fn)
 {
