@@ -79,3 +79,20 @@ TEST(DriverInputs, LargeStretchRejectsInvalidOptions)
     }
     EXPECT_EQ(run("large_stretch_3d", "--help").status, 0);
 }
+
+// pals_units_3d's own options: value lists (--sf, --dx), the unit system and the grid choice.
+TEST(DriverInputs, PalsUnitsListsExitTwoWithOneLineNamingTheOption)
+{
+    const std::pair<const char*, const char*> cases[] = {
+        {"--sf 0", "--sf"},          {"--sf 0.5,abc", "--sf"},  {"--sf ,", "--sf"},     {"--dx -1e-3", "--dx"},
+        {"--units km", "--units"},   {"--grid table --sf 0.5", "--grid"}, {"--rho 0", "--rho"},
+        {"--t-ramp 0", "--t-ramp"},  {"--model fem", "--model"},
+    };
+    for (const auto& [args, name] : cases) {
+        const Outcome o = run("pals_units_3d", std::string("--quick ") + args);
+        EXPECT_EQ(o.status, 2) << args;
+        EXPECT_EQ(lines(o.err), 1) << args << ": " << o.err;
+        EXPECT_NE(o.err.find(name), std::string::npos) << args << ": " << o.err;
+    }
+    EXPECT_EQ(run("pals_units_3d", "--help").status, 0);
+}
