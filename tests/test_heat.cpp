@@ -1,6 +1,7 @@
 // Agwai heat conduction, the heat loop and the Euler integrators (spec/000b sec. 3, V8, V12).
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
+#include "pd/heat/heat_cvode.hpp"
 #include "pd/lattice.hpp"
 #include "pd/parallel.hpp"
 
@@ -225,4 +226,37 @@ TEST(Heat, OneAndTwoThreadsBitIdentical)
     pd::set_threads(2);
     pd::heat_flow(model, bonds, theta, Q2);
     for (std::size_t i = 0; i < Q1.size(); ++i) EXPECT_EQ(Q1[i], Q2[i]);
+}
+
+TEST(Heat, CvodeImplicitAndExplicitEulerAgreeOnTheBarTransient)
+{
+    // The same PD bar (ends held at 100, interior at 0) integrated three ways to t = 40 s: CVODE at
+    // tight tolerance is the yardstick; explicit and implicit Euler converge to it at first order.
+    const double dx = 2e-3, A = 1e-4, k = 50, rho_c = 7800 * 502.08, t_end = 40;
+    const auto body = cube<1>(56, dx, A);  // 50 free cells + 3 held on each side
+    const auto bonds = pd::build_bonds(body, 3 * dx);
+    pd::Agwai model({k, A}, body, bonds);
+    pd::HeatLoads loads;
+    for (int i : {0, 1, 2, 53, 54, 55}) loads.fixed.push_back(i), loads.fixed_value.push_back(100);
+    pd::Conduction<pd::Agwai> heat(model, bonds, std::vector<double>(body.size(), rho_c), loads);
+    pd::CvodeOptions opt;
+    opt.rtol = opt.atol = 1e-11;
+    pd::HeatCvode<pd::Agwai> cv(heat, model, bonds, std::vector<double>(body.size(), 0.0), 0.0, opt);
+    const std::vector<double> ref = cv.advance(t_end);
+    EXPECT_GT(cv.stats().steps, 10);
+    auto error = [&](bool implicit, int steps) {
+        std::vector<double> theta(body.size(), 0.0);
+        heat.apply_fixed(theta);
+        for (int n = 0; n < steps; ++n) implicit ? heat.implicit_euler(theta, t_end / steps) : heat.explicit_euler(theta, t_end / steps);
+        double e = 0;
+        for (std::size_t i = 0; i < theta.size(); ++i) e = std::max(e, std::abs(theta[i] - ref[i]));
+        return e;
+    };
+    const double dt_crit = pd::thermal_critical_step(model, bonds, heat, std::vector<double>(body.size(), 0.0));
+    const int n_exp = int(std::ceil(t_end / (0.5 * dt_crit)));
+    const double e1 = error(false, n_exp), e2 = error(false, 2 * n_exp);
+    EXPECT_NEAR(e1 / e2, 2.0, 0.1);
+    const double i1 = error(true, 40), i2 = error(true, 80);
+    EXPECT_NEAR(i1 / i2, 2.0, 0.15);
+    EXPECT_LT(i2, 1.0);
 }
