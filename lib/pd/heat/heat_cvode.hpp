@@ -43,6 +43,7 @@ public:
     }
 
     const std::vector<double>& advance(double t_out) { return cvode_->advance(t_out); }
+    CvodeBdf& cvode() { return *cvode_; }
     CvodeStats stats() const { return cvode_->stats(); }
 
 private:

@@ -101,6 +101,27 @@ const std::vector<double>& CvodeBdf::advance(double t_out)
     return y_;
 }
 
+double CvodeBdf::step(double t_stop)
+{
+    check(CVodeSetStopTime(impl_->mem, t_stop), "CVodeSetStopTime");
+    realtype t = t_;
+    check(CVode(impl_->mem, t_stop, impl_->y, &t, CV_ONE_STEP), "CVode (one step)");
+    t_ = t;
+    const double* p = N_VGetArrayPointer(impl_->y);
+    std::copy(p, p + y_.size(), y_.begin());
+    return t_;
+}
+
+void CvodeBdf::dense_output(double t, std::vector<double>& y) const
+{
+    N_Vector out = N_VNew_Serial(static_cast<sunindextype>(y_.size()), impl_->ctx);
+    const int flag = CVodeGetDky(impl_->mem, t, 0, out);
+    const double* p = N_VGetArrayPointer(out);
+    y.assign(p, p + y_.size());
+    N_VDestroy(out);
+    check(flag, "CVodeGetDky");
+}
+
 CvodeStats CvodeBdf::stats() const
 {
     CvodeStats s;

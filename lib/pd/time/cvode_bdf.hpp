@@ -37,6 +37,11 @@ public:
 
     // Integrates to t_out [s] and returns y(t_out). Throws std::runtime_error with CVODE's flag on failure.
     const std::vector<double>& advance(double t_out);
+    // One internal step towards t_stop [s] (never past it); returns the new time. y() is the state there.
+    double step(double t_stop);
+    // CVODE's interpolant of order q within the last step, t in [time() - last step, time()].
+    void dense_output(double t, std::vector<double>& y) const;
+    const std::vector<double>& y() const { return y_; }
     double time() const { return t_; }
     CvodeStats stats() const;
 
