@@ -18,6 +18,7 @@
 #include "pd/heat/heat_loop.hpp"
 
 #include <Eigen/Sparse>
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseLU>
 
 #include <algorithm>
@@ -135,31 +136,71 @@ public:
         for (std::size_t i = 0; i < n; ++i) theta[i] = next[i];
     }
 
+    // Steady state: Q + s - h (theta - T_inf) = 0 on free nodes, held values on held nodes, by
+    // BiCGSTAB with a diagonal preconditioner to a relative residual `tol` (the operator is
+    // non-symmetric with the per-node thermal correction). Needs at least one held node or h > 0.
+    // Returns the iterations; throws std::runtime_error when it does not converge.
+    int steady_state(std::vector<double>& theta, double tol = 1e-12)
+    {
+        const std::size_t n = theta.size();
+        apply_fixed(theta);
+        bool anchored = !loads_.fixed.empty();
+        for (std::size_t i = 0; i < n && !anchored; ++i) anchored = h(i) > 0;
+        if (!anchored) throw std::invalid_argument("steady state: no held temperature and no convection (singular)");
+        std::vector<double> zero(n, 0.0);
+        assemble(zero);  // rho c / dt = 0
+        Eigen::VectorXd rhs(n), held_values = Eigen::VectorXd::Zero(n), x0(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            rhs[i] = held_[i] ? theta[i] : source(i) + h(i) * loads_.T_inf;
+            if (held_[i]) held_values[i] = theta[i];
+            x0[i] = theta[i];
+        }
+        rhs += coupling_ * held_values;
+        Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::DiagonalPreconditioner<double>> solver;
+        solver.setTolerance(tol);
+        solver.setMaxIterations(100000);
+        solver.compute(M_);
+        const Eigen::VectorXd x = solver.solveWithGuess(rhs, x0);
+        if (solver.info() != Eigen::Success)
+            throw std::runtime_error("steady state: BiCGSTAB did not converge (residual " + std::to_string(solver.error()) + ")");
+        for (std::size_t i = 0; i < n; ++i) theta[i] = x[i];
+        return int(solver.iterations());
+    }
+
 private:
     void factorise(double dt, const std::vector<double>& rc)
+    {
+        std::vector<double> diag(rc.size());
+        for (std::size_t i = 0; i < rc.size(); ++i) diag[i] = rc[i] / dt;
+        assemble(diag);
+        lu_ = std::make_unique<Eigen::SparseLU<Eigen::SparseMatrix<double>>>();
+        lu_->compute(M_);
+        if (lu_->info() != Eigen::Success) throw std::runtime_error("implicit Euler: sparse LU failed");
+        lu_dt_ = dt;
+        lu_rc_ = rc;
+    }
+
+    // M_ = diag(c + h) - A on the free rows, identity on the held rows; coupling_ = the free-row,
+    // held-column block of A.
+    void assemble(const std::vector<double>& c)
     {
         const Eigen::SparseMatrix<double> A = heat_operator(model_, bonds_);
         // Held nodes are eliminated: identity rows, and their columns of the free rows move to the
         // right-hand side (coupling_), so no row mixes the two scales and the free block keeps the
         // symmetry of A.
         std::vector<Eigen::Triplet<double>> t, c_t;
-        t.reserve(A.nonZeros() + rc.size());
-        for (int c = 0; c < A.outerSize(); ++c)
-            for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
+        t.reserve(A.nonZeros() + c.size());
+        for (int col = 0; col < A.outerSize(); ++col)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(A, col); it; ++it) {
                 if (held_[it.row()]) continue;
                 if (held_[it.col()]) c_t.emplace_back(it.row(), it.col(), it.value());
                 else t.emplace_back(it.row(), it.col(), -it.value());
             }
         coupling_.resize(A.rows(), A.cols());
         coupling_.setFromTriplets(c_t.begin(), c_t.end());
-        for (std::size_t i = 0; i < rc.size(); ++i) t.emplace_back(int(i), int(i), held_[i] ? 1.0 : rc[i] / dt + h(i));
-        Eigen::SparseMatrix<double> M(A.rows(), A.cols());
-        M.setFromTriplets(t.begin(), t.end());
-        lu_ = std::make_unique<Eigen::SparseLU<Eigen::SparseMatrix<double>>>();
-        lu_->compute(M);
-        if (lu_->info() != Eigen::Success) throw std::runtime_error("implicit Euler: sparse LU failed");
-        lu_dt_ = dt;
-        lu_rc_ = rc;
+        for (std::size_t i = 0; i < c.size(); ++i) t.emplace_back(int(i), int(i), held_[i] ? 1.0 : c[i] + h(i));
+        M_.resize(A.rows(), A.cols());
+        M_.setFromTriplets(t.begin(), t.end());
     }
 
     Model& model_;
@@ -170,6 +211,7 @@ private:
     std::vector<double> Q_, P_;
     std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> lu_;
     Eigen::SparseMatrix<double> coupling_;  // free-row, held-column block of A
+    Eigen::SparseMatrix<double> M_;         // matrix of the last implicit or steady system
     double lu_dt_ = 0;
     std::vector<double> lu_rc_;
 };
