@@ -79,15 +79,6 @@ struct Agwai {
     }
 
     double bond_heat(std::size_t, std::int64_t k, int, double dtheta) const { return coef[k] * dtheta; }
-
-    // Sum of the intact conductances of node i [W/(m^3 K)] (the diagonal of the linear operator).
-    double conductance(const Bonds& b, std::size_t i) const
-    {
-        double s = 0;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-            if (!b.has_damage() || b.intact[k]) s += coef[k];
-        return s;
-    }
 };
 
 }  // namespace pd

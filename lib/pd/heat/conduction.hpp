@@ -7,7 +7,7 @@
 // coefficient per unit volume h_s/depth [W/(m^3 K)] (heat leaves where theta > T_inf). Nodes with
 // neither are adiabatic (the default). Integrators:
 //   explicit_euler   theta += dt (Q + s - h (theta - T_inf)) / (rho c(theta)); stable below
-//                    thermal_critical_step (Gershgorin: rho c / (sum of conductances + h)).
+//                    thermal_critical_step (Gershgorin bound of the operator).
 //   implicit_euler   (rho c/dt + h - A) theta^{n+1} = rho c/dt theta^n + s + h T_inf, A the linear
 //                    heat operator of the model (Q = A theta); fixed rows are identity rows. The sparse LU
 //                    factorisation is kept while dt and rho c do not change; rho c(theta) is taken at
@@ -47,20 +47,25 @@ inline void add_surface_flux(HeatLoads& loads, std::size_t n, const std::vector<
     for (int i : layer) loads.source[i] += q / depth;
 }
 
-// Linear heat operator A (Q = A theta) of a model with per-bond conductances coef (Agwai).
+// Linear heat operator A (Q = A theta) of a model: its own add_operator(bonds, triplets) when it has
+// one (correspondence heat), else from per-bond conductances coef (Agwai).
 template <class Model>
 Eigen::SparseMatrix<double> heat_operator(const Model& model, const Bonds& b)
 {
     std::vector<Eigen::Triplet<double>> t;
-    t.reserve(b.size() + b.nodes());
-    for (std::size_t i = 0; i < b.nodes(); ++i) {
-        double diag = 0;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            if (b.has_damage() && !b.intact[k]) continue;
-            t.emplace_back(int(i), b.partner[k], model.coef[k]);
-            diag -= model.coef[k];
+    if constexpr (requires { model.add_operator(b, t); }) {
+        model.add_operator(b, t);
+    } else {
+        t.reserve(b.size() + b.nodes());
+        for (std::size_t i = 0; i < b.nodes(); ++i) {
+            double diag = 0;
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (b.has_damage() && !b.intact[k]) continue;
+                t.emplace_back(int(i), b.partner[k], model.coef[k]);
+                diag -= model.coef[k];
+            }
+            t.emplace_back(int(i), int(i), diag);
         }
-        t.emplace_back(int(i), int(i), diag);
     }
     Eigen::SparseMatrix<double> A(int(b.nodes()), int(b.nodes()));
     A.setFromTriplets(t.begin(), t.end());
@@ -216,17 +221,22 @@ private:
     std::vector<double> lu_rc_;
 };
 
-// Thermal critical step of explicit Euler [s] (spec/000b sec. 3.7, eq. 3.20, Gershgorin):
-// min over free nodes of rho c_i / (sum_j conductance_ij + h_i). With the thermal correction the
-// conductances include TCF (the source's fork ignores it; ours is the bound of the actual operator).
+// Thermal critical step of explicit Euler [s] (spec/000b sec. 3.7, eq. 3.20): the eigenvalues of
+// A lie in the Gershgorin discs, |lambda_i| <= sum_j |A_ij| = 2 g_i, and explicit Euler needs
+// dt |lambda| / (rho c) <= 2, so dt = min over free nodes of rho c_i / (g_i + h_i). For Agwai g_i is
+// the sum of the bond conductances sum_j kappa_1 V_j/|xi| (eq. 3.20); with the thermal correction
+// it includes TCF (the source's fork ignores it; ours bounds the actual operator).
 template <class Model>
 double thermal_critical_step(const Model& model, const Bonds& b, const Conduction<Model>& c,
                              const std::vector<double>& theta)
 {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> A = heat_operator(model, b);
     double dt = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < b.nodes(); ++i) {
+    for (int i = 0; i < A.outerSize(); ++i) {
         if (c.held(i)) continue;
-        const double g = model.conductance(b, i) + c.h(i);
+        double g = 0;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(A, i); it; ++it) g += 0.5 * std::abs(it.value());
+        g += c.h(i);
         if (g > 0) dt = std::min(dt, c.rho_c(i, theta[i]) / g);
     }
     return dt;
