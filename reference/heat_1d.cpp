@@ -77,6 +77,36 @@ double heat_bar_exact_time_to(const HeatBar1D& bar, double x, double T_target)
     return t;
 }
 
+namespace {
+// One implicit-Euler step of the 3-point scheme, (1 + 2r) T_i - r (T_{i-1} + T_{i+1}) = T_i^n for
+// i = 1..N-1 with the end values held (Thomas algorithm); c and rhs are work arrays of size N+1.
+void fd_implicit_step(std::vector<double>& T, double r, std::vector<double>& c, std::vector<double>& rhs)
+{
+    const int N = int(T.size()) - 1;
+    for (int i = 1; i < N; ++i) rhs[i] = T[i] + (i == 1 ? r * T[0] : 0) + (i == N - 1 ? r * T[N] : 0);
+    double b = 1 + 2 * r;
+    c[1] = -r / b;
+    rhs[1] /= b;
+    for (int i = 2; i < N; ++i) {
+        b = 1 + 2 * r + r * c[i - 1];
+        c[i] = -r / b;
+        rhs[i] = (rhs[i] + r * rhs[i - 1]) / b;
+    }
+    T[N - 1] = rhs[N - 1];
+    for (int i = N - 2; i >= 1; --i) T[i] = rhs[i] - c[i] * T[i + 1];
+}
+}  // namespace
+
+std::vector<double> heat_bar_fd_profile(const HeatBar1D& bar, int N, double dt, int steps)
+{
+    if (N < 2 || !(dt > 0) || steps < 0) throw std::invalid_argument("heat_bar_fd_profile: need N >= 2, dt > 0, steps >= 0");
+    const double dx = bar.L / N, r = bar.alpha * dt / (dx * dx);
+    std::vector<double> T(N + 1, bar.T0), c(N + 1), rhs(N + 1);
+    T[0] = T[N] = bar.T_end;
+    for (int n = 0; n < steps; ++n) fd_implicit_step(T, r, c, rhs);
+    return T;
+}
+
 double heat_bar_fd_time_to(const HeatBar1D& bar, int N, double dt, double x, double T_target, double t_max)
 {
     check_target(bar, T_target, "heat_bar_fd_time_to");
@@ -88,19 +118,8 @@ double heat_bar_fd_time_to(const HeatBar1D& bar, int N, double dt, double x, dou
     T[0] = T[N] = bar.T_end;
     const double up = bar.T_end > bar.T0 ? 1 : -1;  // direction of the change at the probe
     for (double t = 0; t < t_max; t += dt) {
-        // (1 + 2r) T_i - r (T_{i-1} + T_{i+1}) = T_i^n, i = 1..N-1, end values known (Thomas algorithm).
-        for (int i = 1; i < N; ++i) rhs[i] = T[i] + (i == 1 ? r * bar.T_end : 0) + (i == N - 1 ? r * bar.T_end : 0);
         const double before = T[probe];
-        double b = 1 + 2 * r;
-        c[1] = -r / b;
-        rhs[1] /= b;
-        for (int i = 2; i < N; ++i) {
-            b = 1 + 2 * r + r * c[i - 1];
-            c[i] = -r / b;
-            rhs[i] = (rhs[i] + r * rhs[i - 1]) / b;
-        }
-        T[N - 1] = rhs[N - 1];
-        for (int i = N - 2; i >= 1; --i) T[i] = rhs[i] - c[i] * T[i + 1];
+        fd_implicit_step(T, r, c, rhs);
         if (up * (T[probe] - T_target) >= 0) return t + dt * (T_target - before) / (T[probe] - before);
     }
     throw std::runtime_error("heat_bar_fd_time_to: target not reached within t_max");

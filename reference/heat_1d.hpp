@@ -16,6 +16,8 @@
 // 78.639 (100), 78.640 s (200 and more).
 #pragma once
 
+#include <vector>
+
 namespace pd::ref {
 
 struct HeatBar1D {
@@ -40,5 +42,9 @@ double heat_bar_exact_time_to(const HeatBar1D& bar, double x, double T_target);
 // N < 2, dt <= 0, or a target not strictly between T0 and T_end; std::runtime_error if the target
 // is not reached within t_max [s].
 double heat_bar_fd_time_to(const HeatBar1D& bar, int N, double dt, double x, double T_target, double t_max = 1e6);
+
+// Temperatures of the same finite-difference bar (N+1 nodes x_i = i L/N) after `steps` implicit-Euler
+// steps of dt [s]. Throws std::invalid_argument for N < 2, dt <= 0 or steps < 0.
+std::vector<double> heat_bar_fd_profile(const HeatBar1D& bar, int N, double dt, int steps);
 
 }  // namespace pd::ref

@@ -151,7 +151,7 @@ int run(int argc, char** argv)
         auto record = [&](pd::HeatIntegrator sch, double step) { row(sch, step, run_prism(p, s, sch, step)); };
         std::printf("work-precision (reference: CVODE rtol 1e-9, t50 = %.6f s):\n", t_ref);
         row(pd::HeatIntegrator::explicit_euler, opt.get("dt-factor"), pdr);  // the run of step 2
-        if (!quick) record(pd::HeatIntegrator::explicit_euler, 0.25);
+        if (!quick) record(pd::HeatIntegrator::explicit_euler, 0.9);
         for (double dt : {10.0, 2.5, 0.625}) record(pd::HeatIntegrator::implicit_euler, dt);
         for (double tol : {1e-4, 1e-6}) record(pd::HeatIntegrator::cvode, tol);
     }
