@@ -1,0 +1,134 @@
+// Correspondence (state-based) heat conduction with hourglass suppression (spec/000b sec. 3.4-3.5;
+// Agwai; the thesis's suppression term with the stabilising sign):
+//   shape tensor        K_i = sum_j omega xi (x) xi V_j                           [m^(D+2)...]
+//   gradient            g_i = K_i^-1 sum_j omega (theta_j - theta_i) xi V_j          [K/m]
+//   heat flux           q_i = k g_i (Lagrangian Fourier law with F = I; sign as the source: the
+//                       balance below makes it diffusive, spec 3.4 [RECON])
+//   heat-flow state     h_i<xi> = omega (K_i^-1 q_i) . xi    (the general form; 1/m_w only in 1D)
+//   balance             Q_i = sum_j (h_i<xi> - h_j<-xi>) V_j = sum_j omega (a_i + a_j) . xi V_j,  a = K^-1 q
+//   suppression         h_hg<xi> = C_hg kappa_1 (theta_j - theta_i - g_i . xi)/|xi|   (stabilising sign,
+//                       erratum: the printed sign is anti-diffusive), from both ends:
+//                       Q_hg,i = sum_j C_hg kappa_1 (2 (theta_j - theta_i) - (g_i + g_j) . xi)/|xi| V_j
+//   with kappa_1 the Agwai micro-conductivity of the dimension (agwai.hpp). Exact for linear fields
+//   (g exact, hourglass term 0) at every node with an invertible K; Q = k lap(theta) in the interior
+//   for quadratic fields. The operator is linear in theta: add_operator() gives its matrix exactly.
+// A node whose K is singular gets K^-1 = 0: no gradient, only the suppression term acts.
+#pragma once
+#include "pd/bonds.hpp"
+#include "pd/heat/agwai.hpp"
+#include "pd/lattice.hpp"
+#include "pd/parallel.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+template <int D>
+struct CorrespondenceHeat {
+    static constexpr bool has_point_pass = true;
+    using Mat = Eigen::Matrix<double, D, D>;
+    using Col = Eigen::Matrix<double, D, 1>;
+    struct Params {
+        double k = 0;        // conductivity [W/(m K)]
+        double C_hg = 0;     // hourglass suppression coefficient [-] (0 = off)
+        double measure = 1;  // A [m^2] in 1D, thickness [m] in 2D, 1 in 3D (kappa_1 only)
+    };
+
+    Params par;
+    double kappa1 = 0;             // Agwai micro-conductivity of the dimension
+    Field<D> x;                    // reference positions [m]
+    std::vector<Mat> Kinv;         // K_i^-1
+    std::vector<Col> g, a;         // gradient [K/m] and K^-1 q per node
+    const Bonds* bonds = nullptr;
+
+    CorrespondenceHeat(const Params& p, const Body<D>& body, const Bonds& b)
+        : par(p), x(body.x), Kinv(b.nodes(), Mat::Zero()), g(b.nodes(), Col::Zero()), a(b.nodes(), Col::Zero()), bonds(&b)
+    {
+        if (!(p.k > 0)) throw std::invalid_argument("CorrespondenceHeat: conductivity k must be positive");
+        if (!(p.C_hg >= 0)) throw std::invalid_argument("CorrespondenceHeat: C_hg must be >= 0");
+        kappa1 = agwai_micro_conductivity(p.k, D, b.delta, p.measure);
+        shape_tensors(b);
+    }
+
+    Col xi(std::size_t i, int j) const
+    {
+        Col r;
+        for (int d = 0; d < D; ++d) r(d) = x.c[d][j] - x.c[d][i];
+        return r;
+    }
+    bool intact(const Bonds& b, std::int64_t k) const { return !b.has_damage() || b.intact[k]; }
+
+    void shape_tensors(const Bonds& b)
+    {
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            Mat K = Mat::Zero();
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+                if (intact(b, k)) K += b.omega[k] * b.volume[k] * xi(i, b.partner[k]) * xi(i, b.partner[k]).transpose();
+            const double scale = K.trace() / D;
+            Kinv[i] = scale > 0 && std::abs(K.determinant()) > 1e-12 * std::pow(scale, D) ? Mat(K.inverse()) : Mat::Zero();
+        });
+    }
+
+    void point_pass(const Bonds& b, const std::vector<double>& theta)
+    {
+        if (b.has_damage()) shape_tensors(b);
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            Col s = Col::Zero();
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+                if (intact(b, k)) s += b.omega[k] * b.volume[k] * (theta[b.partner[k]] - theta[i]) * xi(i, b.partner[k]);
+            g[i] = Kinv[i] * s;
+            a[i] = Kinv[i] * (par.k * g[i]);
+        });
+    }
+
+    double bond_heat(std::size_t i, std::int64_t k, int j, double dtheta) const
+    {
+        const Col e = xi(i, j);
+        const double V = bonds->volume[k];
+        double h = bonds->omega[k] * V * (a[i] + a[j]).dot(e);
+        if (par.C_hg != 0) h += par.C_hg * kappa1 * V / bonds->length[k] * (2 * dtheta - (g[i] + g[j]).dot(e));
+        return h;
+    }
+
+    // Adds the exact matrix A (Q = A theta) of this linear operator to the triplets.
+    void add_operator(const Bonds& b, std::vector<Eigen::Triplet<double>>& t) const
+    {
+        // dg_i/dtheta_l = G_il = K_i^-1 omega xi_il V_l (l in family of i), dg_i/dtheta_i = -sum_l G_il.
+        auto add_gradient = [&](std::size_t row, std::size_t node, const Col& c) {  // c . g_node
+            Col sum = Col::Zero();
+            for (std::int64_t k = b.begin(node); k < b.end(node); ++k) {
+                if (!intact(b, k)) continue;
+                const Col G = Kinv[node] * (b.omega[k] * b.volume[k] * xi(node, b.partner[k]));
+                t.emplace_back(int(row), b.partner[k], c.dot(G));
+                sum += G;
+            }
+            t.emplace_back(int(row), int(node), -c.dot(sum));
+        };
+        for (std::size_t i = 0; i < b.nodes(); ++i)
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (!intact(b, k)) continue;
+                const int j = b.partner[k];
+                const Col e = xi(i, j);
+                const double V = b.volume[k];
+                // omega V (a_i + a_j) . xi, a = k K^-1 g
+                const Col w = b.omega[k] * V * par.k * e;
+                add_gradient(i, i, Kinv[i].transpose() * w);
+                add_gradient(i, j, Kinv[j].transpose() * w);
+                if (par.C_hg != 0) {
+                    const double c = par.C_hg * kappa1 * V / b.length[k];
+                    t.emplace_back(int(i), j, 2 * c);
+                    t.emplace_back(int(i), int(i), -2 * c);
+                    add_gradient(i, i, -c * e);
+                    add_gradient(i, j, -c * e);
+                }
+            }
+    }
+};
+
+}  // namespace pd

@@ -1,0 +1,56 @@
+// The PD heat equation of Conduction (conduction.hpp) integrated by CVODE BDF with the KLU sparse
+// direct solver (time/cvode_bdf.hpp): y = theta, y' = (Q + s - h (theta - T_inf)) / rho c(theta),
+// 0 on held nodes; Jacobian (A - diag h) / rho c with A the model's linear heat operator
+// (exact for constant rho c, the lagged-rho-c approximation otherwise). Error control by CVODE's
+// tolerances instead of a fixed step.
+#pragma once
+#include "pd/heat/conduction.hpp"
+#include "pd/time/cvode_bdf.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace pd {
+
+template <class Model>
+class HeatCvode {
+public:
+    HeatCvode(Conduction<Model>& heat, const Model& model, const Bonds& bonds, std::vector<double> theta0, double t0,
+              const CvodeOptions& opt = {})
+        : heat_(heat), A_(heat_operator(model, bonds))
+    {
+        heat_.apply_fixed(theta0);
+        theta_.resize(theta0.size());
+        cvode_ = std::make_unique<CvodeBdf>(
+            std::move(theta0), t0,
+            [this](double, const double* y, double* ydot) {
+                theta_.assign(y, y + theta_.size());
+                heat_.heating(theta_, P_);
+                for (std::size_t i = 0; i < theta_.size(); ++i) ydot[i] = heat_.held(i) ? 0.0 : P_[i] / heat_.rho_c(i, y[i]);
+            },
+            [this](double, const double* y, CvodeBdf::SparseRowMajor& J) {
+                J = A_;  // row-major copy
+                for (int r = 0; r < J.outerSize(); ++r) {
+                    const double scale = heat_.held(r) ? 0.0 : 1.0 / heat_.rho_c(r, y[r]);
+                    for (CvodeBdf::SparseRowMajor::InnerIterator it(J, r); it; ++it) {
+                        double v = it.value();
+                        if (it.col() == r) v -= heat_.h(r);
+                        it.valueRef() = v * scale;
+                    }
+                }
+            },
+            opt);
+    }
+
+    const std::vector<double>& advance(double t_out) { return cvode_->advance(t_out); }
+    CvodeBdf& cvode() { return *cvode_; }
+    CvodeStats stats() const { return cvode_->stats(); }
+
+private:
+    Conduction<Model>& heat_;
+    CvodeBdf::SparseRowMajor A_;
+    std::vector<double> theta_, P_;
+    std::unique_ptr<CvodeBdf> cvode_;
+};
+
+}  // namespace pd
