@@ -18,6 +18,10 @@
 // the hot loop (correspondence: hourglass control on or off), and a kernel that holds raw pointers
 // to its arrays lets the compiler keep them in registers. bond_force should be branch-free and
 // inline (no calls, no Eigen temporaries) so that the 8-bond inner loop below vectorises.
+// Node term: a kernel may also supply
+//   Vec<D> node_force(std::size_t i) const;   // added once to the lane sum of node i [N/m^3]
+// for a part of the force that factors out of the family sum (correspondence: the i-end term
+// P_i K_i^-1 sum_j omega xi V_j, computed once per node instead of once per bond).
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
 // without that array (if constexpr).
@@ -118,7 +122,12 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                 for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
             }
         });
-        for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
+        if constexpr (requires { model.node_force(i); }) {
+            const Vec<D> fn = model.node_force(i);
+            for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d) + fn[d];
+        } else {
+            for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
+        }
     });
 }
 }  // namespace detail

@@ -70,6 +70,8 @@ struct Correspondence {
     Field<D> x;                       // reference positions [m]
     std::vector<double> wV;           // omega V_j per bond [m^3]
     std::vector<double> hg;           // c_hg V_j / |xi| per bond [N/m^4 in 3D]; empty when C_hg = 0
+    Field<D> m_xi;                    // sum_j omega xi V_j over intact bonds [m^4 in 3D] (0 for a full family)
+    Field<D> f_own;                   // P_i K_i^-1 m_xi: the i-end force summed over the family [N/m^3]
     std::vector<Mat> Kinv;            // K_i^-1 [m^-5 in 3D]
     std::vector<Mat> F;               // deformation gradient [-]
     std::vector<Mat> sigma;           // Cauchy stress [Pa] (Law::linear: the small-strain stress)
@@ -79,7 +81,7 @@ struct Correspondence {
 
     Correspondence() = default;
     Correspondence(const Params& p, const Body<D>& body, const Bonds& b)
-        : par(p), x(body.x), wV(b.size()), Kinv(b.nodes(), Mat::Zero()), F(b.nodes(), Mat::Identity()),
+        : par(p), x(body.x), wV(b.size()), m_xi(b.nodes()), f_own(b.nodes()), Kinv(b.nodes(), Mat::Zero()), F(b.nodes(), Mat::Identity()),
           sigma(b.nodes(), Mat::Zero()), P(b.nodes(), Mat::Zero()), PKinv(b.nodes(), Mat::Zero())
     {
         if (D != 3 && p.law != Law::linear) throw std::invalid_argument("Correspondence: only Law::linear is written for 2D");
@@ -110,11 +112,12 @@ struct Correspondence {
 
     // Family sums of node i over its intact bonds, in the lane order of bond_loop.hpp (8 partial
     // sums per entry, vectorised over bonds): N[q] = sum_j omega (z_j - z_i) (x) xi V_j for each of
-    // the NZ fields z (y gives F K, v gives Fdot K), and, when WithK, K = sum_j omega xi (x) xi V_j.
+    // the NZ fields z (y gives F K, v gives Fdot K), and, when WithK, K = sum_j omega xi (x) xi V_j
+    // and m = sum_j omega xi V_j.
     template <bool Damaged, bool WithK, int NZ>
-    void family_sums(const Bonds& b, std::size_t i, const std::array<const Field<D>*, NZ>& z, Mat* N, Mat* K) const
+    void family_sums(const Bonds& b, std::size_t i, const std::array<const Field<D>*, NZ>& z, Mat* N, Mat* K, Col* m) const
     {
-        constexpr int C = NZ * DD + (WithK ? DK : 0);
+        constexpr int C = NZ * DD + (WithK ? DK + D : 0);
         detail::LaneSum<C> sum;
         const int* partner = b.partner.data();
         const double* wv = wV.data();
@@ -140,6 +143,7 @@ struct Correspondence {
                 int t = NZ * DD;
                 for (int a = 0; a < D; ++a)
                     for (int c = a; c < D; ++c) sum.s[t++][l] += e[a] * we[c];
+                for (int a = 0; a < D; ++a) sum.s[t++][l] += we[a];
             }
         });
         for (int q = 0; q < NZ; ++q)
@@ -149,6 +153,7 @@ struct Correspondence {
             int t = NZ * DD;
             for (int a = 0; a < D; ++a)
                 for (int c = a; c < D; ++c) (*K)(a, c) = (*K)(c, a) = sum.total(t++);
+            for (int a = 0; a < D; ++a) (*m)(a) = sum.total(t++);
         }
     }
 
@@ -165,9 +170,11 @@ struct Correspondence {
     {
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat K;
-            if (b.has_damage()) family_sums<true, true, 0>(b, i, {}, nullptr, &K);
-            else family_sums<false, true, 0>(b, i, {}, nullptr, &K);
+            Col m;
+            if (b.has_damage()) family_sums<true, true, 0>(b, i, {}, nullptr, &K, &m);
+            else family_sums<false, true, 0>(b, i, {}, nullptr, &K, &m);
             Kinv[i] = inverse_or_zero(K);
+            for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
         });
     }
 
@@ -175,8 +182,8 @@ struct Correspondence {
     Mat gradient(const Bonds& b, std::size_t i, const Field<D>& z) const
     {
         Mat N;
-        if (b.has_damage()) family_sums<true, false, 1>(b, i, {&z}, &N, nullptr);
-        else family_sums<false, false, 1>(b, i, {&z}, &N, nullptr);
+        if (b.has_damage()) family_sums<true, false, 1>(b, i, {&z}, &N, nullptr, nullptr);
+        else family_sums<false, false, 1>(b, i, {&z}, &N, nullptr, nullptr);
         return N * Kinv[i];
     }
 
@@ -205,28 +212,36 @@ struct Correspondence {
         else stress_pass<false>(b, y);
     }
 
-    // Bond kernel (bond_loop.hpp, with_kernel): force density on i from bond k (i -> j),
+    // Bond kernel (bond_loop.hpp, with_kernel). The force density on i from bond k (i -> j),
     //   omega V_j (P_i K_i^-1 + P_j K_j^-1) xi  +  c_hg V_j/|xi| ((2Y - (F_i + F_j) xi).Y / |Y|^2) Y,
-    // the second term only when Hourglass. Branch-free plain arithmetic on raw arrays, so that the
-    // bond loop vectorises it; |Y| = 0 (a collapsed broken bond) gives a zero hourglass force.
+    // (second term only when Hourglass) is split: the i-end term summed over the family is
+    // P_i K_i^-1 m_xi (node_force, once per node); bond_force gives the rest. Branch-free plain
+    // arithmetic on raw arrays, so that the bond loop vectorises it; |Y| = 0 (a collapsed broken
+    // bond) gives a zero hourglass force.
     template <bool Hourglass>
     struct Kernel {
         static constexpr bool ordinary = false;
         const double* x[D];        // reference positions [m]
+        const double* f_own[D];    // P_i K_i^-1 m_xi [N/m^3]
         const double* wV;          // omega V_j per bond [m^3]
         const double* hg;          // c_hg V_j / |xi| per bond [N/m^4] (Hourglass only)
         const double* A;           // P K^-1 per node, D x D column-major blocks [Pa/m^5]
         const double* F;           // F per node, D x D column-major blocks [-] (Hourglass only)
+        Vec<D> node_force(std::size_t i) const
+        {
+            Vec<D> f;
+            for (int d = 0; d < D; ++d) f[d] = f_own[d][i];
+            return f;
+        }
         Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const
         {
-            const double* Ai = A + DD * i;
             const double* Aj = A + DD * static_cast<std::size_t>(j);
             double e[D];
             for (int d = 0; d < D; ++d) e[d] = x[d][j] - x[d][i];
             Vec<D> f;
             for (int a = 0; a < D; ++a) {
                 double s = 0;
-                for (int c = 0; c < D; ++c) s += (Ai[a + D * c] + Aj[a + D * c]) * e[c];
+                for (int c = 0; c < D; ++c) s += Aj[a + D * c] * e[c];
                 f[a] = wV[k] * s;
             }
             if constexpr (Hourglass) {
@@ -249,7 +264,7 @@ struct Correspondence {
     Kernel<Hourglass> kernel() const
     {
         Kernel<Hourglass> kn{};
-        for (int d = 0; d < D; ++d) kn.x[d] = x.c[d].data();
+        for (int d = 0; d < D; ++d) { kn.x[d] = x.c[d].data(); kn.f_own[d] = f_own.c[d].data(); }
         kn.wV = wV.data();
         kn.hg = Hourglass ? hg.data() : nullptr;
         kn.A = PKinv.empty() ? nullptr : PKinv.front().data();
@@ -264,10 +279,14 @@ struct Correspondence {
         else pass(kernel<false>());
     }
 
-    // Force density on i from bond k (i -> j), both ends' states included [N/m^3] (the kernel's).
+    // Force density on i from bond k (i -> j), both ends' states included [N/m^3]: the kernel's
+    // plus the i-end term omega V_j P_i K_i^-1 xi of this bond.
     Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const
     {
-        return c_hg != 0 ? kernel<true>().bond_force(i, k, j, Y) : kernel<false>().bond_force(i, k, j, Y);
+        Vec<D> f = c_hg != 0 ? kernel<true>().bond_force(i, k, j, Y) : kernel<false>().bond_force(i, k, j, Y);
+        const Col own = wV[k] * (PKinv[i] * xi(i, j));
+        for (int d = 0; d < D; ++d) f[d] += own(d);
+        return f;
     }
 
     // Energy density W_i [J/m^3]; call after point_pass. Law::saint_venant_kirchhoff: the exact
@@ -297,11 +316,13 @@ struct Correspondence {
         const bool damaged = b.has_damage();
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N[2], Ks;                                         // F K, Fdot K, K over intact bonds
+            Col m;
             if (damaged) {
-                family_sums<true, true, 2>(b, i, {&y, &v}, N, &Ks);
+                family_sums<true, true, 2>(b, i, {&y, &v}, N, &Ks, &m);
                 Kinv[i] = inverse_or_zero(Ks);
+                for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
             } else {
-                family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr);
+                family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
             }
             if (Kinv[i].isZero(0)) return;
             F[i] = N[0] * Kinv[i];
@@ -335,9 +356,18 @@ private:
     {
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
-            family_sums<Damaged, Damaged, 1>(b, i, {&y}, &N, &K);
-            if constexpr (Damaged) Kinv[i] = inverse_or_zero(K);
-            if (Kinv[i].isZero(0)) { F[i] = Mat::Identity(); P[i] = PKinv[i] = Mat::Zero(); return; }
+            Col m;
+            family_sums<Damaged, Damaged, 1>(b, i, {&y}, &N, &K, &m);
+            if constexpr (Damaged) {
+                Kinv[i] = inverse_or_zero(K);
+                for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
+            }
+            if (Kinv[i].isZero(0)) {
+                F[i] = Mat::Identity();
+                P[i] = PKinv[i] = Mat::Zero();
+                for (int d = 0; d < D; ++d) f_own.c[d][i] = 0;
+                return;
+            }
             F[i] = N * Kinv[i];
             if (par.law == Law::linear) {
                 sigma[i] = linear_stress(F[i]);
@@ -349,6 +379,11 @@ private:
                 P[i] = F[i].determinant() * sigma[i] * F[i].inverse().transpose();  // P = J sigma F^-T
             }
             PKinv[i] = P[i] * Kinv[i];
+            for (int a = 0; a < D; ++a) {
+                double s = 0;
+                for (int c = 0; c < D; ++c) s += PKinv[i](a, c) * m_xi.c[c][i];
+                f_own.c[a][i] = s;
+            }
         });
     }
 };
