@@ -25,6 +25,10 @@
 // spurious stress. Peridigm pairs v_nph with y_np1, which gives a spurious expansion
 // N (1 - cos(theta/N)) per rotation theta in N steps (2.8e-2 K of stress for 90 degrees in 100 steps;
 // tests/test_correspondence.cpp).
+// Cost (issue 3; reports/3d/model_cost.md): the family sums K, F K (and Fdot K) are lane sums in the
+// bond-loop order, K and sum omega xi V in the same pass as F once bonds can break; the i-end force
+// P_i K_i^-1 sum_j omega xi V_j is summed once per node (kernel node_force); the bond kernel reads
+// P_j K_j^-1 and F_j of node j (18 values per bond: what remains is this gather, about 6x PMB).
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
