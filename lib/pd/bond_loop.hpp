@@ -11,6 +11,17 @@
 //   Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const;
 //        // force density on i from bond k, both ends' states included, (T_i<xi> - T_j<-xi>) V_j [N/m^3]
 // The choice is made at compile time (if constexpr): ordinary models compile the same loop as before.
+// Kernels: a model may hand the bond pass a separate kernel object instead of itself, by supplying
+//   template <class Pass> void with_kernel(Pass&& pass) const;   // calls pass(kernel) exactly once
+// where the kernel has the members above (ordinary flag, bond_scalar or bond_force). The model picks
+// at run time among kernels specialised at compile time, so a switched-off term costs no branch in
+// the hot loop (correspondence: hourglass control on or off), and a kernel that holds raw pointers
+// to its arrays lets the compiler keep them in registers. bond_force should be branch-free and
+// inline (no calls, no Eigen temporaries) so that the 8-bond inner loop below vectorises.
+// Node term: a kernel may also supply
+//   Vec<D> node_force(std::size_t i) const;   // added once to the lane sum of node i [N/m^3]
+// for a part of the force that factors out of the family sum (correspondence: the i-end term
+// P_i K_i^-1 sum_j omega xi V_j, computed once per node instead of once per bond).
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
 // without that array (if constexpr).
@@ -111,7 +122,12 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                 for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
             }
         });
-        for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
+        if constexpr (requires { model.node_force(i); }) {
+            const Vec<D> fn = model.node_force(i);
+            for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d) + fn[d];
+        } else {
+            for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
+        }
     });
 }
 }  // namespace detail
@@ -122,10 +138,14 @@ void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, Field<D
 {
     if (f.size() != y.size()) f.resize(y.size());
     if constexpr (Model::has_point_pass) model.point_pass(bonds, y);
-    if (bonds.has_damage())
-        detail::bond_pass<true>(model, bonds, y, f);
-    else
-        detail::bond_pass<false>(model, bonds, y, f);
+    auto pass = [&](const auto& kernel) {
+        if (bonds.has_damage())
+            detail::bond_pass<true>(kernel, bonds, y, f);
+        else
+            detail::bond_pass<false>(kernel, bonds, y, f);
+    };
+    if constexpr (requires { model.with_kernel(pass); }) model.with_kernel(pass);
+    else pass(model);
 }
 
 }  // namespace pd
