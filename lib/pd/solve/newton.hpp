@@ -6,9 +6,7 @@
 // larger of ||b V|| and the reaction norm over the constrained components (or a user value;
 // ||f_int V|| when both vanish). Load stepping warm-starts each level from the previous one; the
 // jump of the prescribed values enters through the residual of the first iteration.
-// Linear solver: SimplicialLDLT (sparse Cholesky, AMD ordering; handles indefinite but not singular
-// tangents) or Jacobi-preconditioned ConjugateGradient (SPD; a consistent semi-definite system too),
-// relative tolerance cg_tol. Modified Newton (`reuse_tangent`) keeps the tangent (and the
+// Linear solver: sparse Cholesky, CG or LU (solve/linear_solver.hpp). Modified Newton (`reuse_tangent`) keeps the tangent (and the
 // factorisation) of the first iteration of a level while the residual falls by at least
 // `reuse_ratio` per iteration, and re-assembles otherwise.
 // Failure is never silent: max_iter reached, non-finite residual, a failed factorisation (singular
@@ -17,10 +15,9 @@
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
 #include "pd/io/timer.hpp"
+#include "pd/solve/linear_solver.hpp"
 #include "pd/solve/tangent.hpp"
 
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
 
 #include <cmath>
 #include <ostream>
@@ -31,14 +28,6 @@
 #include <vector>
 
 namespace pd {
-
-enum class LinearSolver { cholesky, cg };
-inline LinearSolver parse_linear_solver(const std::string& s)
-{
-    if (s == "cholesky") return LinearSolver::cholesky;
-    if (s == "cg") return LinearSolver::cg;
-    throw std::invalid_argument("unknown linear solver '" + s + "' (cholesky | cg)");
-}
 
 struct NewtonOptions {
     double tol = 1e-8;          // relative residual [-]
@@ -97,13 +86,13 @@ public:
                 ++r.tangents;
                 r.tangent_s += tt.seconds();
                 const io::Timer ft;
-                if (!factorise(opt, failure)) { r.linear_s += ft.seconds(); break; }
+                if (!linear_.factorise(K_, opt.linear, opt.cg_tol, opt.cg_max_iter, failure)) { r.linear_s += ft.seconds(); break; }
                 r.linear_s += ft.seconds();
                 have_tangent = true;
             }
             const io::Timer st;
             Eigen::VectorXd du;
-            const bool ok = linear_solve(opt, du, failure);
+            const bool ok = linear_.solve(R_, du, failure);
             r.linear_s += st.seconds();
             if (!ok) break;
             for (std::size_t i = 0; i < body.size(); ++i)
@@ -164,8 +153,7 @@ private:
     DofMap dofs_;
     Colouring colouring_;
     Eigen::SparseMatrix<double> K_;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg_;
+    SparseSolver linear_;
 
     void setup(Field<D>& u, const Boundary<D>& bc, double t_load)
     {
@@ -208,36 +196,6 @@ private:
         if (scale == 0) scale = std::sqrt(ff);
         r.force_scale = scale;
         return scale > 0 ? std::sqrt(rr) / scale : 0.0;
-    }
-
-    bool factorise(const NewtonOptions& opt, std::string& failure)
-    {
-        if (opt.linear == LinearSolver::cholesky) {
-            ldlt_.compute(K_);
-            if (ldlt_.info() != Eigen::Success) failure = "sparse Cholesky (LDLT) failed: singular tangent";
-            return ldlt_.info() == Eigen::Success;
-        }
-        cg_.setTolerance(opt.cg_tol);
-        if (opt.cg_max_iter > 0) cg_.setMaxIterations(opt.cg_max_iter);
-        cg_.compute(K_);
-        if (cg_.info() != Eigen::Success) failure = "CG preconditioner setup failed";
-        return cg_.info() == Eigen::Success;
-    }
-
-    bool linear_solve(const NewtonOptions& opt, Eigen::VectorXd& du, std::string& failure)
-    {
-        if (opt.linear == LinearSolver::cholesky) {
-            du = ldlt_.solve(R_);
-            if (ldlt_.info() != Eigen::Success || !du.allFinite()) failure = "sparse Cholesky (LDLT) solve failed: singular tangent";
-        } else {
-            du = cg_.solve(R_);
-            if (cg_.info() != Eigen::Success) {
-                std::ostringstream m;
-                m << "CG did not converge in " << cg_.iterations() << " iterations (relative error " << cg_.error() << ")";
-                failure = m.str();
-            }
-        }
-        return failure.empty();
     }
 };
 
