@@ -20,7 +20,8 @@
 // in node order, each row keeping the bitset of colours already seen. Measured on the cubic lattice
 // 20^3 with delta = 3.05 dx (tests/test_tangent.cpp): 222 colours for r = 1 (lower bound: the
 // 123-node family is a clique), 1395 for r = 2 (lower bound: the 829-node 2-hop ball). Every
-// colour costs D x 2 force evaluations, so an FD tangent costs ~ 8400 of them in a large 3D body.
+// colour costs D x 2 force evaluations, so an FD tangent costs ~ 8400 of them in a large 3D body
+// (bar_stiffness_3d's 10 x 2 x 1 mm bar: 104 colours at n = 2, 584 at n = 5).
 // Step: error of a central difference ~ (h/L)^2 (curvature of |Y| over the shortest bond L) plus
 // eps X / h (rounding of f at the coordinate scale X = max|y|); balanced at h = (eps X L^2)^(1/3).
 // Damage: broken bonds stay in the graph (a superset of the true pattern: safe).
