@@ -18,6 +18,8 @@
 // takes g(t_{n+1}), a prescribed velocity u_n + dt/2 (g(t_n) + g(t_{n+1})); constrained velocities
 // follow the trapezoidal rule; energies and the guard (check_energy, Unstable) are the same. A step
 // whose Newton iterations fail throws std::runtime_error with the reason (never silently).
+// No bond breaking: Explicit's damage pass is not offered here (a bond that breaks inside a step
+// changes the tangent discontinuously; not needed by the elastic cases that use Newmark).
 #pragma once
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
