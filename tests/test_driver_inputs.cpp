@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <sys/wait.h>
 
 namespace {
@@ -95,4 +96,21 @@ TEST(DriverInputs, PalsUnitsListsExitTwoWithOneLineNamingTheOption)
         EXPECT_NE(o.err.find(name), std::string::npos) << args << ": " << o.err;
     }
     EXPECT_EQ(run("pals_units_3d", "--help").status, 0);
+
+// Solver and integrator options of issue 3 (bar_stiffness_3d --solver/--linear, bar_modes_1d
+// --integrator/--newmark-dt): invalid values exit 2 with one line naming the option.
+TEST(DriverInputs, InvalidSolverOptionsExitTwo)
+{
+    const std::tuple<const char*, const char*, const char*> cases[] = {
+        {"bar_stiffness_3d", "--solver implicit", "--solver"}, {"bar_stiffness_3d", "--linear qr", "--linear"},
+        {"bar_stiffness_3d", "--newton-max-iter 0", "--newton-max-iter"},
+        {"bar_modes_1d", "--integrator rk4", "--integrator"},  {"bar_modes_1d", "--newmark-dt 0", "--newmark-dt"},
+        {"bar_modes_1d", "--newmark-dt -2", "--newmark-dt"},
+    };
+    for (const auto& [exe, args, name] : cases) {
+        const Outcome o = run(exe, std::string("--quick ") + args);
+        EXPECT_EQ(o.status, 2) << exe << " " << args;
+        EXPECT_EQ(lines(o.err), 1) << exe << " " << args << ": " << o.err;
+        EXPECT_NE(o.err.find(name), std::string::npos) << exe << " " << args << ": " << o.err;
+    }
 }

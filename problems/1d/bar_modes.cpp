@@ -15,9 +15,12 @@
 // Time step: dt = dt_factor * safety * dt_SA, dt_SA = Silling-Askari (3.14) with the 1D PMB
 //   micromodulus of --calibration (exact bound for PMB, the source's stand-in for LPS), rounded down
 //   so that t_end is a whole number of samples and steps.
-// Run: bar_modes_1d [--N 200 --model lps|pmb] [--m 3] [--quick] [--check] [--out DIR]
-//   default: both studies and the stability sweep (standard size); --N n: one run of --model.
-// Writes: convergence.csv, stability.csv, summary.csv, history.csv (tip: PD, exact, FE), params.csv.
+// Integrators: velocity Verlet (default) or --integrator newmark (beta 1/4, gamma 1/2, time/newmark.hpp)
+//   at dt = --newmark-dt x dt_SA; the study mode also compares both at N (bar_integrators.hpp).
+// Run: bar_modes_1d [--N 200 --model lps|pmb] [--m 3] [--integrator verlet|newmark] [--quick] [--check]
+//   default: both studies, the stability sweep and the integrator comparison; --N n: one run of --model.
+// Writes: convergence.csv, stability.csv, integrators.csv, summary.csv, history.csv (tip: PD, exact,
+//   FE), params.csv.
 // Exit: 2 invalid option, 3 a run became unstable (outside the stability study), 1 a check failed.
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/convergence.hpp"
@@ -28,8 +31,11 @@
 #include "pd/models/lps.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"
+#include "pd/time/newmark.hpp"
 #include "pd/time/verlet.hpp"
 #include "reference/bar_1d_scores.hpp"
+
+#include "bar_integrators.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +45,7 @@
 #include <map>
 #include <numbers>
 #include <tuple>
+#include <type_traits>
 
 namespace {
 
@@ -54,6 +61,7 @@ struct Bar {  // the case (SI), from the options
     int samples;                    // tip samples per T1
     pd::Influence w;                // influence function omega
     pd::PMB::Params::Calibration cal;  // PMB micromodulus
+    bool newmark = false;           // integrator: Newmark, else velocity Verlet
 };
 
 struct Run {  // one PD bar: discretisation, step, tip record
@@ -63,12 +71,13 @@ struct Run {  // one PD bar: discretisation, step, tip record
     std::vector<double> t_s{}, tip_m{};  // record: time [s], tip displacement [m]
 };
 
-// Velocity Verlet (pd::Explicit), k steps per sample; guard = catch pd::Unstable (stability study).
-template <class Model>
+// Velocity Verlet (pd::Explicit) or Newmark (pd::Newmark), k steps per sample; guard = catch
+// pd::Unstable (stability study).
+template <class Sim, class Model>
 void integrate(Run& r, const pd::Body<1>& body, pd::Bonds& bonds, Model& model, const Bar& b, long k, long n_out, bool guard)
 {
     // 4. Clamp layer held at u = 0; u0 = eps0 x in the bar, released from rest.
-    pd::Explicit<1, Model> sim(body, bonds, model, b.rho);
+    Sim sim(body, bonds, model, b.rho);
     sim.boundary.fix(pd::select<1>(body, [](const pd::Vec<1>& p) { return p[0] < 0; }, "clamp layer"));
     for (std::size_t i = 0; i < body.size(); ++i) sim.u.c[0][i] = std::max(body.x.c[0][i], 0.0) * b.eps0;  // eps0 x; clamp 0
     sim.start();
@@ -107,7 +116,11 @@ Run run_pd(const Bar& b, const std::string& model, int N, int m, double dt_scale
     const long n_out = static_cast<long>(std::ceil(t_end / (k * dt_max)));
     r.dt = guard ? dt_max : t_end / (k * n_out);  // stability runs keep dt = factor * dt_SA exactly
     r.nodes = static_cast<long>(body.size()), r.bonds = static_cast<long>(bonds.size()), r.x_tip = body.x.c[0].back();
-    auto go = [&](auto&& pd_model) { integrate(r, body, bonds, pd_model, b, k, n_out, guard); };
+    auto go = [&](auto&& pd_model) {
+        using M = std::decay_t<decltype(pd_model)>;
+        if (b.newmark) integrate<pd::Newmark<1, M>>(r, body, bonds, pd_model, b, k, n_out, guard);
+        else integrate<pd::Explicit<1, M>>(r, body, bonds, pd_model, b, k, n_out, guard);
+    };
     model == "lps" ? go(pd::LPS({.material = pp.material, .dim = 1}, bonds)) : go(pd::PMB(pp, b.w, bonds));
     r.wall_s = timer.seconds();
     return r;
@@ -135,8 +148,10 @@ static int run(int argc, char** argv)
     double& t_end = opt.add("t-end", NAN, "duration (nan = 16 T1, --quick 4 T1)", "s");
     const int& samples = opt.add_int("samples", 100, "tip samples per T1");
     const double& delta_fixed = opt.add("delta-fixed", 0.05, "horizon of the m-convergence study", "m");
+    const std::string& integrator = opt.add_string("integrator", "verlet", "time integrator of the runs", {"verlet", "newmark"});
+    const double& newmark_dt = opt.add("newmark-dt", 4, "Newmark dt / dt_SA (no safety factor; unconditionally stable)");
     pd::io::add_standard(opt, "reports/1d/bar_modes");
-    for (const char* p : {"E", "rho", "length", "area", "eps0", "dt-factor", "safety", "t-end", "delta-fixed"})
+    for (const char* p : {"E", "rho", "length", "area", "eps0", "dt-factor", "safety", "t-end", "delta-fixed", "newmark-dt"})
         opt.require_positive(p);
     opt.require_at_least("m", 1);
     opt.require_at_least("N", 5);         // the source's coarsest bar has 10 cells; below 5 no mode shape is left
@@ -146,7 +161,9 @@ static int run(int argc, char** argv)
     const std::string out = opt.get_string("out");
     pd::set_threads(opt.get_int("threads"));
     const Bar bar{E, rho, l, A, eps0, pd::ref::bar_frequency(1, E, rho, l), samples, pd::Influence::parse(infl),
-                  cal == "lattice" ? pd::PMB::Params::Calibration::lattice : pd::PMB::Params::Calibration::continuum};
+                  cal == "lattice" ? pd::PMB::Params::Calibration::lattice : pd::PMB::Params::Calibration::continuum,
+                  integrator == "newmark"};
+    const double dt_scale = bar.newmark ? newmark_dt : dt_factor * safety;  // dt / dt_SA of the runs
     const int m_min = infl == "triangular" ? 2 : 1;  // triangular omega(delta) = 0: with m = 1 no bond carries force
     if (m < m_min) opt.fail("option --m must be >= 2 with --influence triangular (m = 1 leaves no bond), got 1");
     if (std::isnan(t_end)) t_end = (quick ? 4 : 16) / bar.f1;
@@ -175,7 +192,7 @@ static int run(int argc, char** argv)
     auto check = [&](bool ok, const char* what) { std::printf("  check %-58s %s\n", what, ok ? "ok" : "FAILED"); pass &= ok; };
     char verdict[200] = "";
     for (const auto& [study, mod, n, mm] : runs) {
-        const Run r = run_pd(bar, mod, n, mm, dt_factor * safety, t_end, false);
+        const Run r = run_pd(bar, mod, n, mm, dt_scale, t_end, false);
         const pd::ref::BarScores s = scorer.score(r.t_s, r.tip_m, r.x_tip, n, study != "m");
         table.add({.dx_m = r.dx, .delta_m = r.delta, .m = double(mm), .nodes = r.nodes, .bonds = r.bonds, .error = s.E1,
                    .wall_s = r.wall_s, .labels = {study, mod},
@@ -212,7 +229,9 @@ static int run(int argc, char** argv)
         std::vector<std::pair<std::string, pd::io::StabilityResult>> stab;
         for (const char* mod : {"pmb", "lps"}) {
             auto run = [&](double f) {
-                const Run r = run_pd(bar, mod, N, m, f, guard_periods / bar.f1, true);
+                Bar explicit_bar = bar;  // the stability limit is the explicit one
+                explicit_bar.newmark = false;
+                const Run r = run_pd(explicit_bar, mod, N, m, f, guard_periods / bar.f1, true);
                 return pd::io::StabilityPoint{f, r.dt, r.dt_crit, r.growth, r.unstable_step < 0, r.unstable_step};
             };
             const std::vector<double> factors = {0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3};
@@ -238,6 +257,22 @@ static int run(int argc, char** argv)
         check(std::abs(thr_pmb / vn - 1) <= 0.02, "PMB stability limit within 2 % of von Neumann");
         std::snprintf(verdict + std::strlen(verdict), 120, "; E1 rate %.2f/%.2f, dt limit %.3f/%.3f dt_SA (LPS/PMB)",
                       rate_lps, rate_pmb, thr_lps, thr_pmb);
+    }
+    if (!single) {
+        // Integrators side by side (LPS, N, same window): Verlet at its standard step, Newmark at the same
+        // step and beyond the explicit limit (LPS, N = 100: 1.99 dt_SA); records of >= 24 samples per T1.
+        const auto rows = bar_modes::compare_integrators({{false, dt_factor * safety}, {true, dt_factor * safety}, {true, 4}, {true, 12}},
+            bar.f1, [&](bool newmark, double f) {
+                Bar b = bar;
+                b.newmark = newmark;
+                b.samples = std::min(samples, static_cast<int>(1 / (bar.f1 * f * rf.dt_crit)));
+                return run_pd(b, "lps", N, m, f, t_end, false);
+            }, [&](const Run& r) { return scorer.score(r.t_s, r.tip_m, r.x_tip, N, false); });
+        bar_modes::print_integrators(rows, N);
+        bar_modes::write_integrators(out + "/integrators.csv", rows);
+        // At Verlet's step, Newmark's period error ~ (omega dt)^2/12 is negligible for mode 1: same f1 bound.
+        check(std::abs(rows[1].f1_rel_error) <= 2.0 / N, "Newmark f1 within 2 dx/l of c/(4l) at Verlet's step");
+        summary.push_back({"f1_newmark_4dt_SA", (1 + rows[2].f1_rel_error) * bar.f1, bar.f1, std::abs(rows[2].f1_rel_error), "Hz"});
     }
     pd::io::write_summary(out + "/summary.csv", summary);
     std::printf("verdict: %s: %s\n", pass ? "PASS" : "FAIL (see the checks above)", verdict);

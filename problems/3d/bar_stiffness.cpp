@@ -3,8 +3,9 @@
 // Case: bar l2 x l1 x l3 = 10 x 2 x 1 mm (x axial), E = 100 GPa, nu = 0.33, cubic lattice
 // dx = l3/n, delta = 3.05 dx. Grips of --grip x delta (source: 2 delta) are ADDED OUTSIDE the
 // 10 mm (spec V2 [RECON]: inside zones would overlap at n = 1): left grip u_x = 0, right grip
-// u_x = 1 % of l2, lateral components free. Equilibrium by adaptive dynamic relaxation (ADR),
-// warm-started from the uniform uniaxial field.
+// u_x = 1 % of l2, lateral components free. Equilibrium by adaptive dynamic relaxation (ADR,
+// default) or Newton-Raphson (--solver newton; solve/newton.hpp, with three statically determinate
+// supports removing the lateral rigid modes), warm-started from the uniform uniaxial field.
 // Source: seed 000b sec. 4.6, Figs. 4.2-4.3 (spec/000b sec. 5.2 T2, V2). Measurement (4.37):
 // E = (F/(l1 l3)) / (du/dist), F the axial reaction of the loaded grip, du the difference of the
 // cross-section mean u_x of the two lattice layers nearest 0.5 l2 -+ delta, dist their distance
@@ -13,8 +14,9 @@
 // E_pmb = 3K(1 - 2/4) = 1.5 K. The source (Fig. 4.3) gives no numbers, only trends.
 // Run: bar_stiffness_3d [--model all|pmb|lps|lps-scf|pals|correspondence] [--n 5] [--n-max 10]
 //      [--surface-correction both|none|energy] [--bound-factor 1] [--start uniform|zero] [--quick]
-//      [--check] [--out DIR]. ADR density: Gershgorin bounds of the reference tangent of each model
-//      (exact for PMB; triangle inequality for LPS, PALS, correspondence: times --bound-factor).
+//      [--solver adr|newton] [--linear auto|cholesky|cg|lu] [--reuse-tangent] [--check] [--out DIR].
+//      ADR density: Gershgorin bounds of the reference tangent of each model (exact for PMB; triangle
+//      inequality for LPS, PALS, correspondence: times --bound-factor).
 // Writes: convergence.csv (one row per n, model, correction), summary.csv (finest n), params.csv.
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
@@ -25,6 +27,7 @@
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/models/surface_correction.hpp"
+#include "pd/solve/newton.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
 
 #include <cmath>
@@ -45,18 +48,48 @@ struct Specimen {
 
 struct Outcome {
     bool converged = false;
-    long iterations = 0;
+    long iterations = 0, tangents = 0;
     double residual = 0, E_meas = NAN, E_end = NAN, wall_s = 0;  // [-], [Pa], [Pa], [s]
     std::string message;
+    double support = 0;  // Newton: largest support reaction / force scale [-] (0 at equilibrium)
+    double tangent_s = 0, linear_s = 0;  // Newton: assembly and linear-solve time [s]
+    int colours = 0;                     // Newton: colours of the finite-difference tangent
 };
+
+struct SolverChoice {
+    bool newton = false;
+    double tol = 0;
+    long max_iter = 0;          // ADR
+    pd::NewtonOptions options;  // Newton
+    std::string linear;         // Newton linear solver, or auto
+};
+
+// Three supports (u_y, u_z of the node nearest the centre, u_z of its nearest +y lattice neighbour)
+// fix the translations y, z and the rotation about x, which the grips (u_x only) leave free: the
+// tangent would be singular. They are statically determinate, so at equilibrium their reactions
+// vanish (the grips load only along x) and the deformation is that of the unsupported bar.
+std::vector<std::pair<int, int>> lateral_supports(const Specimen& s)
+{
+    auto nearest = [&](double x, double y, double z) {
+        int best = 0;
+        double d2 = INFINITY;
+        for (std::size_t i = 0; i < s.body.size(); ++i) {
+            const double dx = s.body.x.c[0][i] - x, dy = s.body.x.c[1][i] - y, dz = s.body.x.c[2][i] - z;
+            if (dx * dx + dy * dy + dz * dz < d2) d2 = dx * dx + dy * dy + dz * dz, best = static_cast<int>(i);
+        }
+        return best;
+    };
+    const int a = nearest(s.L / 2, s.W / 2, s.T / 2);
+    const int b = nearest(s.body.x.c[0][a], s.body.x.c[1][a] + s.dx, s.body.x.c[2][a]);
+    return {{a, 1}, {a, 2}, {b, 2}};
+}
 
 // ADR from the uniform uniaxial field (u_x = U x/L, lateral contraction nu_w), then E from the
 // reaction of the right grip and the interior cross-sections.
 template <class Model>
 Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, const pd::Bonds& bonds, double nu_w,
-              double tol, long max_iter, bool warm)
+              const SolverChoice& sc, bool warm)
 {
-    pd::DynamicRelaxation<3, Model> adr(s.body, bonds, model, bound);
     pd::Boundary<3> bc;
     bc.prescribe({pd::Prescribed::Kind::displacement, s.left, 0, pd::TimeFunction::constant(0)});
     bc.prescribe({pd::Prescribed::Kind::displacement, s.right, 0, pd::TimeFunction::constant(s.U)});
@@ -67,11 +100,33 @@ Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, const 
         u.c[1][i] = -nu_w * eps * (s.body.x.c[1][i] - s.W / 2);
         u.c[2][i] = -nu_w * eps * (s.body.x.c[2][i] - s.T / 2);
     }
-    const pd::RelaxationResult r = adr.solve(u, bc, 0, tol, max_iter);
-    Outcome o{r.converged, r.iterations, r.residual, NAN, NAN, r.wall_s, r.message};
-    if (!r.converged) return o;
+    Outcome o;
+    pd::Field<3> f;  // internal force density at the solution [N/m^3]
+    if (sc.newton) {
+        const auto supports = lateral_supports(s);
+        for (auto [i, d] : supports)
+            bc.prescribe({pd::Prescribed::Kind::displacement, {i}, d, pd::TimeFunction::constant(u.c[d][i])});
+        pd::Newton<3, Model> newton(s.body, bonds, model);
+        pd::NewtonOptions nopt = sc.options;
+        nopt.tol = sc.tol;
+        // auto: LU for the non-symmetric correspondence tangent; else Cholesky, CG above 3000 dofs
+        // (the simplicial Cholesky of the state-based pattern costs ~90 s at 5000 dofs, reports/3d/bar_stiffness.md).
+        const char* automatic = !pd::detail::is_ordinary<Model>() ? "lu" : 3 * s.body.size() > 3000 ? "cg" : "cholesky";
+        nopt.linear = pd::parse_linear_solver(sc.linear != "auto" ? sc.linear : automatic);
+        const pd::NewtonResult r = newton.solve(u, bc, 0, nopt);
+        o = {r.converged, r.iterations, r.tangents, r.residual, NAN, NAN, r.wall_s, r.message};
+        f = newton.internal_force_density();
+        o.tangent_s = r.tangent_s, o.linear_s = r.linear_s, o.colours = newton.colouring().count;
+        for (auto [i, d] : supports) o.support = std::max(o.support, std::abs(f.c[d][i] * s.body.volume[i]) / r.force_scale);
+    } else {
+        pd::DynamicRelaxation<3, Model> adr(s.body, bonds, model, bound);
+        const pd::RelaxationResult r = adr.solve(u, bc, 0, sc.tol, sc.max_iter);
+        o = {r.converged, r.iterations, 0, r.residual, NAN, NAN, r.wall_s, r.message};
+        f = adr.internal_force_density();
+    }
+    if (!o.converged) return o;
     double F = 0;  // axial force the bar exerts on the right grip, reversed: reaction [N]
-    for (int i : s.right) F -= adr.internal_force_density().c[0][i] * s.body.volume[i];
+    for (int i : s.right) F -= f.c[0][i] * s.body.volume[i];
     auto mean_ux = [&](const std::vector<int>& set) {
         double m = 0;
         for (int i : set) m += u.c[0][i];
@@ -103,8 +158,13 @@ static int run(int argc, char** argv)
                                         {"all", "pmb", "lps", "lps-scf", "pals", "correspondence"});
     std::string& sc = opt.add_string("surface-correction", "both", "PMB surface correction", {"both", "none", "energy"});
     double& C_hg = opt.add("C-hg", 0.02, "correspondence hourglass coefficient (source: 0.02)");
-    double& tol = opt.add("tol", 1e-6, "ADR relative residual tolerance");
+    double& tol = opt.add("tol", 1e-6, "relative residual tolerance (ADR and Newton)");
     int& max_iter = opt.add_int("max-iter", 100000, "ADR iteration limit");
+    std::string& solver = opt.add_string("solver", "adr", "quasi-static solver", {"adr", "newton"});
+    std::string& linear = opt.add_string("linear", "auto", "Newton linear solver (auto: lu for correspondence, cg above 3000 dofs, else cholesky)",
+                                         {"auto", "cholesky", "cg", "lu"});
+    int& newton_iter = opt.add_int("newton-max-iter", 30, "Newton iteration limit");
+    bool& reuse = opt.add_flag("reuse-tangent", "Newton: keep the tangent while the residual falls 10x per iteration");
     double& bound_factor = opt.add("bound-factor", 1, "PALS/correspondence ADR density: model bound x this");
     std::string& start = opt.add_string("start", "uniform", "ADR initial guess (uniform uniaxial field, or zero)", {"uniform", "zero"});
     pd::io::add_standard(opt, "reports/3d/bar_stiffness");
@@ -114,6 +174,7 @@ static int run(int argc, char** argv)
     opt.require_at_least("n-max", 1);
     opt.require_at_least("C-hg", 0);
     opt.require_at_least("max-iter", 1);
+    opt.require_at_least("newton-max-iter", 1);
     opt.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const bool quick = opt.get_flag("quick");
@@ -131,11 +192,13 @@ static int run(int argc, char** argv)
     if (which != "all") models = {which};
     std::vector<std::string> pmb_sc = sc == "both" ? std::vector<std::string>{"none", "energy"} : std::vector<std::string>{sc};
 
+    const SolverChoice solve_by{solver == "newton", tol, max_iter,
+                          {.max_iter = newton_iter, .reuse_tangent = reuse}, linear};
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     const double E_pmb = 3 * mat.K * (1 - 2 * 0.25);  // PMB: nu = 1/4, E = 3K(1 - 2 nu) [Pa]
     pd::io::CsvWriter conv(out / "convergence.csv",
                            {"n", "dx_m", "delta_m", "m", "nodes", "bonds", "model", "surface_correction", "converged",
-                            "iterations", "residual", "E_meas_Pa", "E_end_Pa", "E_expected_Pa", "error", "rate", "wall_s"});
+                            "iterations", "tangents", "residual", "support_reaction", "E_meas_Pa", "E_end_Pa", "E_expected_Pa", "error", "rate", "wall_s"});
     std::map<std::string, std::pair<double, double>> last;  // case -> (dx, error) for the rate
     std::map<std::string, Outcome> finest;
     bool all_converged = true;
@@ -173,18 +236,18 @@ static int run(int argc, char** argv)
                     // Classical reference W_inf (the full lattice family does not fit in a bar 1-2 cells thick).
                     pd::apply_surface_correction(model, s.body, bonds, pd::parse_surface_correction(corr),
                                                  {.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
-                    o = relax(model, pd::stiffness_bound(model, bonds, s.body.x), s, bonds, nu_w, tol, max_iter, start == "uniform");
+                    o = relax(model, pd::stiffness_bound(model, bonds, s.body.x), s, bonds, nu_w, solve_by, start == "uniform");
                 } else if (name == "lps" || name == "lps-scf") {
                     pd::LPS model({.material = mat, .dim = 3}, bonds);
                     if (name == "lps-scf") model.apply_shear_correction(s.body.x);
-                    o = relax(model, pd::stiffness_bound(model, bonds, s.body.x), s, bonds, nu_w, tol, max_iter, start == "uniform");
+                    o = relax(model, pd::stiffness_bound(model, bonds, s.body.x), s, bonds, nu_w, solve_by, start == "uniform");
                 } else if (name == "pals") {
                     pd::PALS model({.material = mat}, s.body, bonds);
-                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.body.x)), s, bonds, nu_w, tol, max_iter, start == "uniform");
+                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
                 } else {
                     using Corr = pd::Correspondence<3>;
                     Corr model({.material = mat, .law = Corr::Law::linear, .C_hg = C_hg}, s.body, bonds);
-                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.body.x)), s, bonds, nu_w, tol, max_iter, start == "uniform");
+                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
                 }
                 // 6. Compare with the expected modulus, write the row, print.
                 const double E_exp = name == "pmb" ? E_pmb : E;
@@ -197,11 +260,14 @@ static int run(int argc, char** argv)
                 finest[key] = o;
                 all_converged = all_converged && o.converged;
                 conv.row({n, s.dx, s.delta, m, s.body.size(), bonds.size(), name, corr, o.converged ? 1 : 0, o.iterations,
-                          o.residual, o.E_meas, o.E_end, E_exp, err, rate, o.wall_s});
+                          o.tangents, o.residual, o.support, o.E_meas, o.E_end, E_exp, err, rate, o.wall_s});
                 std::printf("%3d %9.3e %7zu %9zu %-15s %-7s %6s %9ld %12.5e %12.5e %10.3e %8.2f\n", n, s.dx, s.body.size(),
                             bonds.size(), name.c_str(), corr.c_str(), o.converged ? "yes" : "NO", o.iterations, o.E_meas,
                             o.E_end, err, o.wall_s);
                 if (!o.converged) std::printf("    %s: %s\n", key.c_str(), o.message.c_str());
+                if (solve_by.newton && o.converged)
+                    std::printf("    newton: %ld tangents (%d colours) %.2f s, linear solves %.2f s, support reaction %.1e of the force scale\n",
+                                o.tangents, o.colours, o.tangent_s, o.linear_s, o.support);
                 std::fflush(stdout);
             }
     }
@@ -218,7 +284,7 @@ static int run(int argc, char** argv)
     // --check (reasons in reports/3d/bar_stiffness.md): every ADR solve converged, and at the finest n
     // the energy surface correction brings PMB closer to its expected modulus.
     bool ok = all_converged;
-    std::string why = all_converged ? "all ADR solves converged" : "some ADR solves did not converge";
+    std::string why = all_converged ? "all " + solver + " solves converged" : "some " + solver + " solves did not converge";
     if (finest.count("pmb") && finest.count("pmb_sc")) {
         const double e0 = pd::io::relative_error(finest["pmb"].E_meas, E_pmb), e1 = pd::io::relative_error(finest["pmb_sc"].E_meas, E_pmb);
         ok = ok && e1 < e0;

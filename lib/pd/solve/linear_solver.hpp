@@ -1,0 +1,75 @@
+// Sparse linear solves K du = R for the Newton-type solvers: SimplicialLDLT (sparse Cholesky, AMD
+// ordering; reads the lower triangle only, so for the symmetric tangents of PMB, LPS, PALS; an
+// indefinite matrix is factorised too, an exactly singular one fails), ConjugateGradient with the
+// Jacobi preconditioner (symmetric positive (semi-)definite; ||K du - R|| <= cg_tol ||R||), or
+// SparseLU (COLAMD ordering; any matrix, e.g. the non-symmetric tangent of correspondence).
+// A factorisation is kept until the next factorise call (reuse across iterations and steps).
+#pragma once
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace pd {
+
+enum class LinearSolver { cholesky, cg, lu };
+inline LinearSolver parse_linear_solver(const std::string& s)
+{
+    if (s == "cholesky") return LinearSolver::cholesky;
+    if (s == "cg") return LinearSolver::cg;
+    if (s == "lu") return LinearSolver::lu;
+    throw std::invalid_argument("unknown linear solver '" + s + "' (cholesky | cg | lu)");
+}
+
+class SparseSolver {
+public:
+    bool factorise(const Eigen::SparseMatrix<double>& K, LinearSolver kind, double cg_tol, int cg_max_iter, std::string& failure)
+    {
+        kind_ = kind;
+        if (kind_ == LinearSolver::cholesky) {
+            ldlt_.compute(K);
+            if (ldlt_.info() != Eigen::Success) failure = "sparse Cholesky (LDLT) failed: singular tangent";
+            return ldlt_.info() == Eigen::Success;
+        }
+        if (kind_ == LinearSolver::lu) {
+            lu_.compute(K);
+            if (lu_.info() != Eigen::Success) failure = "sparse LU failed: " + lu_.lastErrorMessage();
+            return lu_.info() == Eigen::Success;
+        }
+        cg_.setTolerance(cg_tol);
+        if (cg_max_iter > 0) cg_.setMaxIterations(cg_max_iter);
+        cg_.compute(K);
+        if (cg_.info() != Eigen::Success) failure = "CG preconditioner setup failed";
+        return cg_.info() == Eigen::Success;
+    }
+
+    bool solve(const Eigen::VectorXd& R, Eigen::VectorXd& du, std::string& failure)
+    {
+        if (kind_ == LinearSolver::cholesky) {
+            du = ldlt_.solve(R);
+            if (ldlt_.info() != Eigen::Success || !du.allFinite()) failure = "sparse Cholesky (LDLT) solve failed: singular tangent";
+        } else if (kind_ == LinearSolver::lu) {
+            du = lu_.solve(R);
+            if (lu_.info() != Eigen::Success || !du.allFinite()) failure = "sparse LU solve failed: singular tangent";
+        } else {
+            du = cg_.solve(R);
+            if (cg_.info() != Eigen::Success) {
+                std::ostringstream m;
+                m << "CG did not converge in " << cg_.iterations() << " iterations (relative error " << cg_.error() << ")";
+                failure = m.str();
+            }
+        }
+        return failure.empty();
+    }
+
+private:
+    LinearSolver kind_ = LinearSolver::cholesky;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg_;
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+};
+
+}  // namespace pd
