@@ -96,6 +96,7 @@ TEST(DriverInputs, PalsUnitsListsExitTwoWithOneLineNamingTheOption)
         EXPECT_NE(o.err.find(name), std::string::npos) << args << ": " << o.err;
     }
     EXPECT_EQ(run("pals_units_3d", "--help").status, 0);
+}
 
 // Solver and integrator options of issue 3 (bar_stiffness_3d --solver/--linear, bar_modes_1d
 // --integrator/--newmark-dt): invalid values exit 2 with one line naming the option.
