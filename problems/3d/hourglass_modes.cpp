@@ -21,6 +21,7 @@
 // params.csv.
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/list_option.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
@@ -34,7 +35,6 @@
 #include <cstdio>
 #include <iostream>
 #include <numbers>
-#include <sstream>
 
 namespace {
 
@@ -188,19 +188,6 @@ double interior_checker_energy(Model& model, const pd::Body<D>& body, const pd::
     return w < 0 ? NAN : w / (0.5 * E * (a / body.dx) * (a / body.dx));
 }
 
-std::vector<double> parse_list(const pd::io::Options& opt, const std::string& text)
-{
-    std::vector<double> v;
-    std::stringstream ss(text);
-    for (std::string item; std::getline(ss, item, ',');) {
-        double x = 0;
-        if (!pd::io::parse_double(item, x) || !(x >= 0) || !std::isfinite(x)) opt.fail("option --chg: '" + item + "' is not a number >= 0");
-        v.push_back(x);
-    }
-    if (v.empty()) opt.fail("option --chg: empty list");
-    return v;
-}
-
 }  // namespace
 
 static int run(int argc, char** argv)
@@ -213,7 +200,7 @@ static int run(int argc, char** argv)
     double& m = opt.add("m", 3.05, "horizon ratio delta/dx");
     int& n = opt.add_int("n", 6, "nodes per edge of the cube (quick: 5)");
     int& n2 = opt.add_int("n2", 12, "nodes per edge of the 2D square, 0 = no 2D (quick: 8)");
-    std::string& chg = opt.add_string("chg", "0,0.002,0.02,0.2", "correspondence hourglass coefficients C_hg (comma list)");
+    opt.add_string("chg", "0,0.002,0.02,0.2", "correspondence hourglass coefficients C_hg (comma list)");
     std::string& which = opt.add_string("model", "all", "models", {"all", "pmb", "lps", "pals", "correspondence"});
     double& zero_tol = opt.add("zero-tol", 1e-8, "near-zero eigenvalue threshold, relative to lambda_max");
     double& h_rel = opt.add("h", 1e-5, "finite-difference step, relative to dx");
@@ -226,7 +213,7 @@ static int run(int argc, char** argv)
     opt.require_at_least("spectrum", 0);
     opt.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
-    const std::vector<double> C_hg = parse_list(opt, chg);
+    const std::vector<double> C_hg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
     const bool quick = opt.get_flag("quick");
     if (quick && !opt.given("n")) n = 5;
     if (quick && !opt.given("n2")) n2 = 8;

@@ -20,6 +20,7 @@
 // Writes: runs.csv (one row per units, model, dx, SF), summary.csv, params.csv.
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/list_option.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
@@ -164,18 +165,6 @@ void with_model(const std::string& name, Scene& s, const pd::Elastic& mat, doubl
     }
 }
 
-// Comma-separated positive numbers of option `name` (one-line failure naming it otherwise).
-std::vector<double> parse_list(const pd::io::Options& opt, const std::string& name)
-{
-    std::vector<double> v;
-    std::stringstream ss(opt.get_string(name));
-    for (std::string item; std::getline(ss, item, ',');)
-        if (double x = 0; pd::io::parse_double(item, x) && x > 0 && std::isfinite(x)) v.push_back(x);
-        else opt.fail("option --" + name + ": '" + item + "' is not a positive number");
-    if (v.empty()) opt.fail("option --" + name + " is empty");
-    return v;
-}
-
 }  // namespace
 
 static int run(int argc, char** argv)
@@ -203,7 +192,8 @@ static int run(int argc, char** argv)
     opt.require_at_least("m", 1), opt.require_at_least("C-hg", 0);
     opt.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
-    const std::vector<double> sfs = parse_list(opt, "sf"), dxs = parse_list(opt, "dx");
+    const std::vector<double> sfs = pd::io::list_option(opt, "sf", pd::io::ListValues::positive);
+    const std::vector<double> dxs = pd::io::list_option(opt, "dx", pd::io::ListValues::positive);
     const bool product = opt.given("sf") || opt.given("dx");
     if (product && opt.given("grid")) opt.fail("option --grid cannot be combined with --sf or --dx");
     const bool quick = opt.get_flag("quick");
