@@ -9,7 +9,7 @@
 // C_hg = 0.02 in the source).
 // References (never the model under test): 6 rigid-body modes in 3D, 3 in 2D (theory), and K r = 0
 // for the analytic rigid modes r; the PMB pair-spring matrix K_ij = -c V_i V_j n n^T / |xi|,
-// c = 18K/(pi delta^4), written here, for the finite-difference assembly.
+// c = 18K/(pi delta^4) (reference/pmb_pair_stiffness.hpp), for the finite-difference assembly.
 // Compared: zero modes beyond the rigid ones (|lambda| < --zero-tol lambda_max); soft modes (below
 // 1/10 of the softest non-rigid LPS eigenvalue); the smallest non-rigid eigenvalues; Rayleigh
 // quotients of the checkerboard u = (-1)^(a+b+c) e_x, plain and under a bubble envelope, and of
@@ -19,14 +19,17 @@
 //      correspondence] [--zero-tol 1e-8] [--h 1e-5] [--quick] [--check] [--out DIR]
 // Writes: modes.csv (one row per model), eigenvalues.csv (lowest --spectrum per model), summary.csv,
 // params.csv.
+#include "pd/analysis/stiffness_matrix.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/list_option.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
+#include "reference/pmb_pair_stiffness.hpp"
 
 #include <Eigen/Dense>
 
@@ -34,75 +37,11 @@
 #include <cstdio>
 #include <iostream>
 #include <numbers>
-#include <sstream>
 
 namespace {
 
 using Mat = Eigen::MatrixXd;
 constexpr double soft_factor = 0.1;  // soft mode: below this times the softest physical (LPS) mode
-
-// K = -d(f V)/du by central differences, dof D i + d; the step is the exact difference of the
-// perturbed coordinates (x + h) - (x - h) as stored.
-template <int D, class Model>
-Mat stiffness(Model& model, const pd::Body<D>& body, const pd::Bonds& bonds, double h)
-{
-    const int N = static_cast<int>(body.size());
-    Mat K(D * N, D * N);
-    pd::Field<D> y = body.x, fp, fm;
-    for (int b = 0; b < D * N; ++b) {
-        const int i = b / D, d = b % D;
-        const double x = body.x.c[d][i], xp = x + h, xm = x - h;
-        y.c[d][i] = xp;
-        pd::internal_force(model, bonds, y, fp);
-        y.c[d][i] = xm;
-        pd::internal_force(model, bonds, y, fm);
-        y.c[d][i] = x;
-        for (int j = 0; j < N; ++j)
-            for (int e = 0; e < D; ++e) K(D * j + e, b) = -(fp.c[e][j] - fm.c[e][j]) * body.volume[j] / (xp - xm);
-    }
-    return K;
-}
-
-// PMB pair springs, linearised at the reference configuration (omega = 1): the force on i from j is
-// c V_i V_j ((u_j - u_i).n / |xi|) n, so K_ij = -c V_i V_j n n^T / |xi| and K_ii = -sum_j K_ij.
-Mat pmb_analytic(const pd::Body<3>& body, double delta, double c)
-{
-    const int N = static_cast<int>(body.size());
-    Mat K = Mat::Zero(3 * N, 3 * N);
-    for (int i = 0; i < N; ++i)
-        for (int j = 0; j < N; ++j) {
-            const pd::Vec<3> xi = body.x[j] - body.x[i];
-            const double r = norm(xi);  // found by ADL (friend of Vec)
-            if (i == j || r > delta * (1 + 1e-10)) continue;  // horizon rule of build_bonds
-            for (int a = 0; a < 3; ++a)
-                for (int b = 0; b < 3; ++b) {
-                    const double k = c * body.volume[i] * body.volume[j] * xi[a] * xi[b] / (r * r * r);
-                    K(3 * i + a, 3 * j + b) -= k;
-                    K(3 * i + a, 3 * i + b) += k;
-                }
-        }
-    return K;
-}
-
-// Orthonormal rigid modes: D translations and D(D-1)/2 infinitesimal rotations about the centroid.
-template <int D>
-Mat rigid_modes(const pd::Body<D>& body)
-{
-    const int N = static_cast<int>(body.size()), nr = D == 3 ? 6 : 3;
-    Mat R = Mat::Zero(D * N, nr);
-    pd::Vec<D> c{};
-    for (int i = 0; i < N; ++i) c += body.x[i] * (1.0 / N);
-    const int axes[3][2] = {{0, 1}, {1, 2}, {2, 0}};
-    for (int i = 0; i < N; ++i) {
-        const pd::Vec<D> r = body.x[i] - c;
-        for (int d = 0; d < D; ++d) R(D * i + d, d) = 1;
-        for (int q = 0; q < nr - D; ++q) {  // rotation in the plane (a, b): u_a = -r_b, u_b = r_a
-            R(D * i + axes[q][0], D + q) = -r[axes[q][1]];
-            R(D * i + axes[q][1], D + q) = r[axes[q][0]];
-        }
-    }
-    return Eigen::HouseholderQR<Mat>(R).householderQ() * Mat::Identity(D * N, nr);
-}
 
 // Test fields with the staggering (-1)^(k.a) of lattice index a = (a, b, c) and a wave-vector mask
 // k in {0, 1}^D (k pi / dx), polarised along e_pol: kind 0 plain, kind 1 times the bubble envelope
@@ -125,41 +64,27 @@ Eigen::VectorXd pattern(const pd::Body<D>& body, double L, int kind, int k_mask 
     return u;
 }
 
-struct Modes {
+struct Modes : pd::StiffnessSpectrum {  // lambda, vectors, lambda_max, asymmetry, rigid_residual, rigid, negative
     std::string model;
-    int dim = 3, dofs = 0, rigid = 6, zero_extra = 0, negative = 0, soft = -1;
-    double C_hg = NAN, lambda_max = 0, asymmetry = 0, rigid_residual = 0, wall_s = 0;
+    int dim = 3, dofs = 0, zero_extra = 0, soft = -1;
+    double C_hg = NAN, wall_s = 0;
     double rq[3] = {};          // Rayleigh quotients u^T K u / u^T u of the three test fields [N/m]
     double interior_W = NAN;    // max W over full-family nodes under the checkerboard / (E (a/dx)^2 / 2)
     double in_soft = NAN;       // mean fraction of the enveloped {0, pi}^D patterns inside the soft subspace
-    Eigen::VectorXd lambda;     // ascending [N/m]
-    Mat vectors;                // eigenvectors, columns in the order of lambda
     double rel(int k) const { return lambda(k) / lambda_max; }
 };
 
-// Spectrum of the symmetric part, zero-mode count, rigid-mode residual ||K R|| / (lambda_max ||R||),
+// Spectrum of the symmetric part, zero-mode count, rigid-mode residual (pd::stiffness_spectrum),
 // Rayleigh quotients of the test fields.
 template <int D>
 Modes analyse(const Mat& K, const pd::Body<D>& body, double zero_tol)
 {
     Modes m;
+    static_cast<pd::StiffnessSpectrum&>(m) = pd::stiffness_spectrum(K, body, zero_tol);
     m.dim = D;
     m.dofs = static_cast<int>(K.rows());
-    m.rigid = D == 3 ? 6 : 3;
+    m.zero_extra = m.zero - m.rigid;
     const Mat S = 0.5 * (K + K.transpose());
-    m.asymmetry = (K - K.transpose()).norm() / K.norm();
-    const Eigen::SelfAdjointEigenSolver<Mat> eig(S);
-    m.lambda = eig.eigenvalues();
-    m.vectors = eig.eigenvectors();
-    m.lambda_max = m.lambda.cwiseAbs().maxCoeff();
-    int zero = 0;
-    for (double l : m.lambda) {
-        zero += std::abs(l) < zero_tol * m.lambda_max;
-        m.negative += l < -zero_tol * m.lambda_max;
-    }
-    m.zero_extra = zero - m.rigid;
-    const Mat R = rigid_modes(body);
-    m.rigid_residual = (K * R).norm() / (m.lambda_max * R.norm());
     double L = 0;  // edge of the cube / square [m]
     for (std::size_t i = 0; i < body.size(); ++i) L = std::max(L, body.x.c[0][i] + body.dx / 2);
     for (int kind = 0; kind < 3; ++kind) {
@@ -188,19 +113,6 @@ double interior_checker_energy(Model& model, const pd::Body<D>& body, const pd::
     return w < 0 ? NAN : w / (0.5 * E * (a / body.dx) * (a / body.dx));
 }
 
-std::vector<double> parse_list(const pd::io::Options& opt, const std::string& text)
-{
-    std::vector<double> v;
-    std::stringstream ss(text);
-    for (std::string item; std::getline(ss, item, ',');) {
-        double x = 0;
-        if (!pd::io::parse_double(item, x) || !(x >= 0) || !std::isfinite(x)) opt.fail("option --chg: '" + item + "' is not a number >= 0");
-        v.push_back(x);
-    }
-    if (v.empty()) opt.fail("option --chg: empty list");
-    return v;
-}
-
 }  // namespace
 
 static int run(int argc, char** argv)
@@ -213,7 +125,7 @@ static int run(int argc, char** argv)
     double& m = opt.add("m", 3.05, "horizon ratio delta/dx");
     int& n = opt.add_int("n", 6, "nodes per edge of the cube (quick: 5)");
     int& n2 = opt.add_int("n2", 12, "nodes per edge of the 2D square, 0 = no 2D (quick: 8)");
-    std::string& chg = opt.add_string("chg", "0,0.002,0.02,0.2", "correspondence hourglass coefficients C_hg (comma list)");
+    opt.add_string("chg", "0,0.002,0.02,0.2", "correspondence hourglass coefficients C_hg (comma list)");
     std::string& which = opt.add_string("model", "all", "models", {"all", "pmb", "lps", "pals", "correspondence"});
     double& zero_tol = opt.add("zero-tol", 1e-8, "near-zero eigenvalue threshold, relative to lambda_max");
     double& h_rel = opt.add("h", 1e-5, "finite-difference step, relative to dx");
@@ -226,7 +138,7 @@ static int run(int argc, char** argv)
     opt.require_at_least("spectrum", 0);
     opt.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
-    const std::vector<double> C_hg = parse_list(opt, chg);
+    const std::vector<double> C_hg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
     const bool quick = opt.get_flag("quick");
     if (quick && !opt.given("n")) n = 5;
     if (quick && !opt.given("n2")) n2 = 8;
@@ -247,7 +159,7 @@ static int run(int argc, char** argv)
     auto run_model = [&](const std::string& name, double c, auto&& make, const auto& bd, const pd::Bonds& bb) {
         pd::io::Timer t;
         auto model = make();
-        Mat K = stiffness(model, bd, bb, h);
+        Mat K = pd::fd_stiffness(model, bd, bb, h);
         Modes md = analyse(K, bd, zero_tol);
         md.model = name;
         md.C_hg = c;
@@ -264,7 +176,7 @@ static int run(int argc, char** argv)
     double fd_error = NAN;
     if (wants("pmb")) {
         const Mat K = run_model("pmb", NAN, [&] { return pd::PMB({.material = mat, .dim = 3}, pd::Influence{}, bonds); }, body, bonds);
-        const Mat Ka = pmb_analytic(body, delta, 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)));  // c: spec/000b V12
+        const Mat Ka = pd::ref::pmb_pair_stiffness(body.x.c, body.volume, delta, 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)));
         fd_error = (K - Ka).norm() / Ka.norm();
     }
     const bool lps_ref = wants("lps") || wants("correspondence");

@@ -18,10 +18,12 @@
 // Run: large_stretch_3d [--model all|pmb|lps|pals|correspondence|correspondence-svk] [--n 4]
 //      [--steps 50] [--strain 1] [--tol 1e-6] [--safety 1.2] [--quick] [--check] [--out DIR]
 // Writes: curves.csv (one row per model and step), summary.csv, params.csv.
+#include "pd/bc/grips.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
+#include "pd/measure/bar_sections.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/load_step.hpp"
 #include "pd/models/lps.hpp"
@@ -58,19 +60,8 @@ struct Run {
 struct Bar {
     double L, W, T, dx, delta;
     pd::GrippedBar g;
-    std::vector<int> sec_a, sec_b, mid;  // gauge layers (0.5 l2 -+ delta) and the two mid-length layers
-    double dist = 0;                     // gauge length [m]
+    pd::BarGauge gauge;  // gauge layers (0.5 l2 -+ delta), gauge length, the mid-length layers
 };
-
-// Least-squares slope of the deformed coordinate y_d = x_d + u_d against x_d over `set`.
-double lateral_stretch(const pd::Field<3>& x, const pd::Field<3>& u, const std::vector<int>& set, int d)
-{
-    double xm = 0, ym = 0, sxx = 0, sxy = 0;
-    for (int i : set) xm += x.c[d][i], ym += x.c[d][i] + u.c[d][i];
-    xm /= set.size(), ym /= set.size();
-    for (int i : set) sxx += (x.c[d][i] - xm) * (x.c[d][i] - xm), sxy += (x.c[d][i] - xm) * (x.c[d][i] + u.c[d][i] - ym);
-    return sxy / sxx;
-}
 
 // sqrt(2/3 h':h') of the Hencky strain diag(ln a, ln b, ln c).
 double equivalent_strain(double a, double b, double c)
@@ -89,18 +80,13 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
     pd::DynamicRelaxation<3, Model> adr(body, bonds, model, bound);
     adr.safety = safety * pd::ref::max_tangent_ratio(law, mat.K, mat.G, 1 + strain);  // cover the stiffening
     pd::Field<3> u(body.size()), u_old(body.size()), y(body.size());  // u_old: converged field of step k - 2 (0: unloaded)
-    for (std::size_t i = 0; i < body.size(); ++i) {  // step 1 guess: uniform uniaxial field of the first step
-        const double e = strain / steps;
-        u.c[0][i] = e * s.L * std::clamp(body.x.c[0][i] / s.L, 0.0, 1.0);
-        u.c[1][i] = -nu * e * (body.x.c[1][i] - s.W / 2);
-        u.c[2][i] = -nu * e * (body.x.c[2][i] - s.T / 2);
-    }
+    const double e = strain / steps;  // step 1 guess: uniform uniaxial field of the first step
+    pd::uniaxial_bar_field(body, s.L, s.W, s.T, e * s.L, e, nu, pd::Grips::axial, u);
     Run run;
     for (int k = 1; k <= steps; ++k) {
         const double U = strain * s.L * k / steps;
         pd::Boundary<3> bc;
-        bc.prescribe({pd::Prescribed::Kind::displacement, s.g.left, 0, pd::TimeFunction::constant(0)});
-        bc.prescribe({pd::Prescribed::Kind::displacement, s.g.right, 0, pd::TimeFunction::constant(U)});
+        pd::grip_bar_ends(bc, s.g.left, s.g.right, pd::TimeFunction::constant(U), pd::Grips::axial);
         if (k > 1) {  // secant predictor from the converged fields of steps k - 1 and k - 2
             const pd::Field<3> u_km1 = u;
             for (int d = 0; d < 3; ++d)
@@ -116,13 +102,12 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
         pd::add_fields(body.x, u, y);
         commit(bonds, y);
         Point p{.strain = U / s.L, .iterations = r.iterations, .residual = r.residual};
-        double F = 0;  // axial reaction of the right grip [N]
-        for (int i : s.g.right) F -= adr.internal_force_density().c[0][i] * body.volume[i];
-        auto mean_ux = [&](const std::vector<int>& set) { double m = 0; for (int i : set) m += u.c[0][i]; return m / set.size(); };
+        const double F = pd::axial_reaction(adr.internal_force_density(), body, s.g.right);  // right grip [N]
+        const pd::BarGauge& g = s.gauge;
         p.P = F / (s.W * s.T);
-        p.lambda = 1 + (mean_ux(s.sec_b) - mean_ux(s.sec_a)) / s.dist;
-        p.mu_y = lateral_stretch(body.x, u, s.mid, 1);
-        p.mu_z = lateral_stretch(body.x, u, s.mid, 2);
+        p.lambda = 1 + (pd::mean_axial_displacement(u, g.sec_b) - pd::mean_axial_displacement(u, g.sec_a)) / g.dist;
+        p.mu_y = pd::lateral_stretch(body.x, u, g.mid, 1);
+        p.mu_z = pd::lateral_stretch(body.x, u, g.mid, 2);
         if (!(std::isfinite(p.lambda) && p.lambda > 0 && p.mu_y > 0 && p.mu_z > 0)) {  // e.g. a section turned inside out
             run.converged = false;
             run.message = "step " + std::to_string(k) + ": nonphysical gauge state (stretches " + std::to_string(p.lambda) + ", " +
@@ -186,20 +171,11 @@ static int run(int argc, char** argv)
     opt.save_csv(out / "params.csv");
 
     // 2. Discretisation: bar plus grips; gauge layers at 0.5 l2 -+ delta, the mid-length layers.
-    Bar s{L, W, T, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * m * T / n), {}, {}, {}, 0};
-    const long nx = std::lround(L / s.dx);
-    const long a = std::clamp(std::lround((L / 2 - s.delta) / s.dx - 0.5), 0L, nx - 1);
-    const long b = std::clamp(std::lround((L / 2 + s.delta) / s.dx - 0.5), 0L, nx - 1);
-    s.dist = (b - a) * s.dx;
-    for (std::size_t i = 0; i < s.g.body.size(); ++i) {
-        const long layer = std::lround(s.g.body.x.c[0][i] / s.dx - 0.5);
-        if (layer == a) s.sec_a.push_back(static_cast<int>(i));
-        if (layer == b) s.sec_b.push_back(static_cast<int>(i));
-        if (layer == (nx - 1) / 2 || layer == nx / 2) s.mid.push_back(static_cast<int>(i));
-    }
-    if (!(s.dist > 0)) opt.fail("option --m too large for the bar: the two gauge layers coincide");
+    Bar s{L, W, T, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * m * T / n), {}};
+    s.gauge = pd::bar_gauge(s.g.body, L, s.dx, s.delta);
+    if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two gauge layers coincide");
     const pd::Bonds bonds = pd::build_bonds(s.g.body, s.delta);
-    std::printf("\nnodes %zu, bonds %zu, dx %.3e m, delta %.3e m, gauge %.3e m\n", s.g.body.size(), bonds.size(), s.dx, s.delta, s.dist);
+    std::printf("\nnodes %zu, bonds %zu, dx %.3e m, delta %.3e m, gauge %.3e m\n", s.g.body.size(), bonds.size(), s.dx, s.delta, s.gauge.dist);
 
     // 3.-5. Models, load stepping by ADR (density: the model's reference-tangent bound).
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);

@@ -15,8 +15,9 @@
 // limits are not asserted; the report states pass/fail against the targets).
 // Run: model_cost_3d [--n 8] [--steps 200] [--repeats 3] [--threads 1] [--quick] [--check] [--out DIR]
 // Writes: summary.csv, runs.csv (per run), timings.csv (per block), params.csv.
-#include "pd/io/guarded_main.hpp"
+#include "pd/bc/grips.hpp"
 #include "pd/io/csv.hpp"
+#include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
@@ -63,10 +64,8 @@ Runner make_runner(const Scene& sc, Make&& make)
     Runner r;
     r.setup_s = setup.seconds();
     auto sim = std::make_shared<Sim>(sc.body, sc.bonds, *model, sc.rho);
-    sim->boundary.fix(sc.fixed);
     const double t_end = sc.steps * sc.dt;
-    sim->boundary.prescribe({pd::Prescribed::Kind::displacement, sc.pulled, 0, pd::TimeFunction::ramp(sc.u_end, t_end)});
-    for (int d : {1, 2}) sim->boundary.prescribe({pd::Prescribed::Kind::displacement, sc.pulled, d, pd::TimeFunction::constant(0)});
+    pd::grip_bar_ends(sim->boundary, sc.fixed, sc.pulled, pd::TimeFunction::ramp(sc.u_end, t_end), pd::Grips::clamped);
     sim->start();
     const double dt = sc.dt;
     const int tip = sc.pulled.front();

@@ -18,10 +18,13 @@
 // Run: pals_units_3d [--units all|si|mmgs|cgs] [--model all|pmb|lps|lps-scf|pals|correspondence]
 //      [--grid standard|table | --sf 0.5,0.1 --dx 1e-3,1.5e-3] [--quick] [--check] [--out DIR]
 // Writes: runs.csv (one row per units, model, dx, SF), summary.csv, params.csv.
+#include "pd/bc/grips.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/list_option.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
+#include "pd/measure/bar_sections.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
@@ -56,18 +59,12 @@ Scene make_scene(const Units& u, double L, double W, double T, double strain, do
     Scene s{L / u.L, W / u.L, T / u.L, strain * L / u.L, dx / u.L, m * dx / u.L, t_ramp / u.T, rho / (u.M / (u.L * u.L * u.L)), 0, {}, {}, {}, {}, {}, {}};
     s.bar = pd::gripped_bar(s.L, s.W, s.T, s.dx, 2 * s.delta);
     s.bonds = pd::build_bonds(s.bar.body, s.delta);
-    const long nx = std::lround(s.L / s.dx);
-    const long a = std::clamp(std::lround((s.L / 2 - s.delta) / s.dx - 0.5), 0L, nx - 1);
-    const long b = std::clamp(std::lround((s.L / 2 + s.delta) / s.dx - 0.5), 0L, nx - 1);
-    s.dist = (b - a) * s.dx;
+    const pd::BarGauge g = pd::bar_gauge(s.bar.body, s.L, s.dx, s.delta);
+    s.dist = g.dist;
     if (!(s.dist > 0)) throw std::invalid_argument("option --m too large for the bar: the two measuring sections coincide");
-    const pd::Field<3>& x = s.bar.body.x;
-    for (std::size_t i = 0; i < s.bar.body.size(); ++i) {
-        const long layer = std::lround(x.c[0][i] / s.dx - 0.5);
-        const bool axis = std::abs(x.c[1][i] - s.W / 2) < s.dx && std::abs(x.c[2][i] - s.T / 2) < s.dx;
-        if (layer == a) (axis ? s.mid_a : s.sec_a).push_back(int(i));
-        if (layer == b) (axis ? s.mid_b : s.sec_b).push_back(int(i));
-    }
+    auto axis = [&](int i) { return pd::near_bar_axis(s.bar.body, i, s.W, s.T, s.dx); };
+    for (int i : g.sec_a) (axis(i) ? s.mid_a : s.sec_a).push_back(i);  // each section: the axis nodes last
+    for (int i : g.sec_b) (axis(i) ? s.mid_b : s.sec_b).push_back(i);
     s.sec_a.insert(s.sec_a.end(), s.mid_a.begin(), s.mid_a.end());
     s.sec_b.insert(s.sec_b.end(), s.mid_b.begin(), s.mid_b.end());
     return s;
@@ -78,17 +75,9 @@ Scene make_scene(const Units& u, double L, double W, double T, double strain, do
 struct Measure { double sigma, eps, eps_axis; };
 Measure measure(const Scene& s, const pd::Field<3>& f, const pd::Field<3>& u)
 {
-    double F = 0;  // reaction on the bar at the pulled grip
-    for (int i : s.bar.right) F -= f.c[0][i] * s.bar.body.volume[i];
-    auto mean = [&](const std::vector<int>& set) { double m = 0; for (int i : set) m += u.c[0][i]; return m / set.size(); };
+    const double F = pd::axial_reaction(f, s.bar.body, s.bar.right);  // reaction on the bar at the pulled grip
+    auto mean = [&](const pd::NodeSet& set) { return pd::mean_axial_displacement(u, set); };
     return {F / (s.W * s.T), (mean(s.sec_b) - mean(s.sec_a)) / s.dist, (mean(s.mid_b) - mean(s.mid_a)) / s.dist};
-}
-
-void grips(pd::Boundary<3>& bc, const Scene& s, const pd::TimeFunction& pull)
-{
-    bc.fix(s.bar.left);
-    bc.prescribe({pd::Prescribed::Kind::displacement, s.bar.right, 0, pull});
-    for (int d : {1, 2}) bc.prescribe({pd::Prescribed::Kind::displacement, s.bar.right, d, pd::TimeFunction::constant(0)});
 }
 
 struct Outcome {
@@ -102,7 +91,7 @@ Outcome run_explicit(Scene& s, Model& model, double sf, double c_pmb)
 {
     Outcome o;
     pd::Explicit<3, Model> sim(s.bar.body, s.bonds, model, s.rho);
-    grips(sim.boundary, s, pd::TimeFunction::ramp(s.U, s.t_ramp));
+    pd::grip_bar_ends(sim.boundary, s.bar.left, s.bar.right, pd::TimeFunction::ramp(s.U, s.t_ramp), pd::Grips::clamped);
     sim.start();
     o.dt_crit = pd::critical_step_silling_askari(s.bonds, sim.rho, c_pmb).dt;
     o.steps = static_cast<long>(std::ceil(s.t_ramp / (sf * o.dt_crit)));
@@ -132,13 +121,9 @@ double quasi_static(const Scene& s, Model& model, const pd::Field<3>& bound, dou
 {
     pd::DynamicRelaxation<3, Model> adr(s.bar.body, s.bonds, model, bound);
     pd::Boundary<3> bc;
-    grips(bc, s, pd::TimeFunction::constant(s.U));
+    pd::grip_bar_ends(bc, s.bar.left, s.bar.right, pd::TimeFunction::constant(s.U), pd::Grips::clamped);
     pd::Field<3> u(s.bar.body.size());
-    for (std::size_t i = 0; i < s.bar.body.size(); ++i) {
-        const double x = s.bar.body.x.c[0][i], eps = s.U / s.L, inside = x > 0 && x < s.L ? 1.0 : 0.0;
-        u.c[0][i] = s.U * std::clamp(x / s.L, 0.0, 1.0);
-        for (int d : {1, 2}) u.c[d][i] = -inside * nu * eps * (s.bar.body.x.c[d][i] - (d == 1 ? s.W : s.T) / 2);
-    }
+    pd::uniaxial_bar_field(s.bar.body, s.L, s.W, s.T, s.U, s.U / s.L, nu, pd::Grips::clamped, u);
     const pd::RelaxationResult r = adr.solve(u, bc, 0, 1e-6, 200000);  // tol as bar_stiffness; not converged: NaN (fails --check)
     const Measure q = measure(s, adr.internal_force_density(), u);
     return r.converged ? q.sigma / q.eps : NAN;
@@ -162,18 +147,6 @@ void with_model(const std::string& name, Scene& s, const pd::Elastic& mat, doubl
         C m({.material = mat, .law = C::Law::linear, .C_hg = C_hg}, s.bar.body, s.bonds);
         fn(m, pd::stiffness_bound_micromodulus(s.bonds, x, c), c);
     }
-}
-
-// Comma-separated positive numbers of option `name` (one-line failure naming it otherwise).
-std::vector<double> parse_list(const pd::io::Options& opt, const std::string& name)
-{
-    std::vector<double> v;
-    std::stringstream ss(opt.get_string(name));
-    for (std::string item; std::getline(ss, item, ',');)
-        if (double x = 0; pd::io::parse_double(item, x) && x > 0 && std::isfinite(x)) v.push_back(x);
-        else opt.fail("option --" + name + ": '" + item + "' is not a positive number");
-    if (v.empty()) opt.fail("option --" + name + " is empty");
-    return v;
 }
 
 }  // namespace
@@ -203,7 +176,8 @@ static int run(int argc, char** argv)
     opt.require_at_least("m", 1), opt.require_at_least("C-hg", 0);
     opt.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
-    const std::vector<double> sfs = parse_list(opt, "sf"), dxs = parse_list(opt, "dx");
+    const std::vector<double> sfs = pd::io::list_option(opt, "sf", pd::io::ListValues::positive);
+    const std::vector<double> dxs = pd::io::list_option(opt, "dx", pd::io::ListValues::positive);
     const bool product = opt.given("sf") || opt.given("dx");
     if (product && opt.given("grid")) opt.fail("option --grid cannot be combined with --sf or --dx");
     const bool quick = opt.get_flag("quick");
