@@ -101,6 +101,26 @@ TEST(PdRunHeat, TwoNodeFirstStepMatchesHandValues)
     }
 }
 
+// The same 3D pair with the other integrators. The difference d = T_1 - T_0 (d_0 = -100) obeys
+// d' = -2 r d, r = kappa_1 V/(|xi| rho cv) = 18.8628/5e5 1/s; the mean 50 is kept. Implicit Euler:
+// d_1 = d_0/(1 + 2 r dt) (T_0 = 96.4921 at dt = 1000 s); CVODE BDF: the exact d_0 exp(-2 r t) at
+// t = 1000 s (T_0 = 96.3662), to 1e-6 relative (rtol = atol = 1e-8 per step over ~100 internal steps).
+TEST(PdRunHeat, TwoNodeImplicitAndCvodeMatchClosedForms)
+{
+    const double r = 6 * 50 / (pi * std::pow(1.5, 4)) / 5e5, dt = 1000;
+    const auto p = write_file("pair.csv", "x,y,z,volume,T0\n0,0,0,1,100\n1,0,0,1,0\n");
+    struct Case { std::string integrator; double d1, tol; };
+    const Case cases[] = {{"implicit", -100 / (1 + 2 * r * dt), 1e-12}, {"cvode", -100 * std::exp(-2 * r * dt), 1e-6}};
+    for (const auto& c : cases) {
+        const Result res = pd_run("pair_" + c.integrator, "--input " + p.string() + heat_only + " --heat agwai --delta 1.5" +
+                                                              " --dt-thermal 1000 --thermal-steps 1 --thermal-integrator " + c.integrator);
+        ASSERT_EQ(res.status, 0) << res.err;
+        const auto st = read_csv(res.dir / "state_step0001.csv");
+        EXPECT_NEAR(st.number(0, 4), 50 - c.d1 / 2, c.tol * 100) << c.integrator;
+        EXPECT_NEAR(st.number(1, 4), 50 + c.d1 / 2, c.tol * 100) << c.integrator;
+    }
+}
+
 // Held temperatures are applied from step 0 and stay exact; with Agwai and a step below the
 // critical one the free nodes stay within the range of the initial and held values (maximum principle).
 TEST(PdRunHeat, HeldTemperaturesStayHeld)
