@@ -184,7 +184,10 @@ int main(int argc, char** argv)
     try {
         cfg.output_steps = pd::io::parse_output_steps(out_steps, cfg.steps);
     } catch (const std::invalid_argument& e) {
-        fail(e.what());
+        std::string msg = e.what();
+        const std::size_t at = msg.find("beyond --steps");
+        if (!mechanics && at != std::string::npos) msg.replace(at, 14, "beyond --thermal-steps");  // heat only: thermal steps
+        fail(msg);
     }
     cfg.out = out;
     pd::set_threads(threads);

@@ -196,6 +196,7 @@ TEST(PdRunHeat, BadInputsExitTwoWithOneLine)
         {in + heat_only + " --heat agwai --T0 20", "--T0 is ambiguous"},
         {in + heat_only + " --heat agwai --E 1e9", "--E applies to the mechanics"},
         {in + heat_only + " --heat agwai --steps 3", "--steps"},
+        {in + heat_only + " --heat agwai --thermal-steps 3 --output-steps 4", "step 4 is beyond --thermal-steps 3"},
         {in + heat_only, "--mechanics off needs --heat"},
         {in + steel + " --k 50", "--k needs --heat"},
         {in + steel + " --heat agwai --k 50 --cv 500 --thermal-steps 3", "--thermal-steps applies to --mechanics off"},
