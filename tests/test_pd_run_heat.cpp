@@ -265,3 +265,20 @@ TEST(PdRunHeat, HeatFollowsTheMechanicalClock)
     EXPECT_NE(vtu.find("Name=\"T\""), std::string::npos);
     EXPECT_NE(vtu.find("Name=\"Q_W_m3\""), std::string::npos);
 }
+
+// The heat loop is owner-computes with a fixed summation order: 1 and 2 threads give the same
+// file, byte for byte (correspondence heat: point pass and bond pass both run in parallel).
+TEST(PdRunHeat, ThreadCountDoesNotChangeTemperatures)
+{
+    const auto p = write_file("threads.csv", lattice(4, [](int i, int, int) { return i == 3 ? std::string("0") : ""; }));
+    std::string files[2];
+    for (int t : {1, 2}) {
+        const Result r = pd_run("threads" + std::to_string(t),
+                                "--input " + p.string() + heat_only + " --heat correspondence --heat-hourglass 0.02" +
+                                    " --delta 2.5e-3 --thermal-steps 10 --threads " + std::to_string(t));
+        ASSERT_EQ(r.status, 0) << r.err;
+        files[t - 1] = slurp(r.dir / "state_step0010.csv");
+    }
+    EXPECT_FALSE(files[0].empty());
+    EXPECT_EQ(files[0], files[1]);
+}
