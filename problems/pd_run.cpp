@@ -1,22 +1,24 @@
 // pd_run -- explicit dynamics of a user's point cloud (issue 2, "Users' own point clouds"), the CSV
 // counterpart of Peridigm's text-file discretisation. Not a verification case: it has no reference
 // and no --quick/--check; the physics it runs is verified by the tests of the library.
-// Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed] (pd/io/point_cloud.hpp).
+// Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed, T0, T_fixed] (pd/io/point_cloud.hpp).
 // Model PMB, LPS, LPS+SCF, PALS (3D) or correspondence (2D/3D, linear small-strain law, Littlewood
 // hourglass --hourglass C) (single material; block ids are passed through to the VTU files only), bond
 // family |xi| <= delta, velocity Verlet (pd::Explicit), fixed points held at their initial
 // displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
 // c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14).
+// Heat conduction (issue 4, problems/pd_run_heat.hpp): --heat agwai|correspondence adds a temperature
+// field (columns T0, T_fixed) integrated by explicit/implicit Euler or CVODE; --mechanics off runs it alone.
 // Run:    pd_run --input cloud.csv --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3 --steps 1000
-//         [--model pmb|lps|scf|pals|correspondence] [--hourglass C] [--surface-correction none|energy] [--dim 1|2|3] [--output-steps 0,500,1000] [--vtu-every 100] [--help]
+//         [--model pmb|lps|scf|pals|correspondence] [--hourglass C] [--dim 1|2|3] [--output-steps 0,500,1000]
+//         [--vtu-every 100] [--heat agwai --k 50 --cv 500 [--mechanics off --thermal-steps 100]] [--help]
 // Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J),
-//         DIR/state_stepNNNN.csv (node_id,x,y,z,ux,uy,uz,vx,vy,vz), DIR/state_stepNNNN.vtu + state.pvd.
+//         DIR/state_stepNNNN.csv (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,T,Q_W_m3]), DIR/state_stepNNNN.vtu +
+//         state.pvd, with --heat DIR/heat.csv (thermal_step,t_s,heat_J,T_min,T_max).
 // Exit status: 0 done; 2 invalid input (one line naming the option or file:line); 3 unstable run
 // (files written before the blow-up are kept). User page: reports/pd_run.md.
 #include "pd/io/options.hpp"
-#include "pd/io/state_output.hpp"
 #include "pd/io/point_cloud.hpp"
-#include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
@@ -24,6 +26,8 @@
 #include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
+#include "pd_run_checks.hpp"
+#include "pd_run_integrate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,85 +38,7 @@
 
 namespace {
 
-constexpr const char* program = "pd_run";
-constexpr double dt_safety = 0.5;  // Silling & Askari's normal safety factor (spec/000a sec. 3.3.2)
-
-struct Run {
-    std::string model;
-    double hourglass = 0;  // C_hg [-]
-    pd::SurfaceCorrectionMethod surface = pd::SurfaceCorrectionMethod::none;
-    pd::Elastic material;
-    pd::Plane plane = pd::Plane::stress;
-    double measure = 1, rho = 0, delta = 0, dx = 0;  // [m^(3-D)], [kg/m^3], [m], [m] (0: no lattice)
-    pd::Influence influence;
-    pd::PartialVolume partial_volume = pd::PartialVolume::none;
-    double dt = 0;                                     // [s]; NaN = automatic
-    long steps = 0, energy_every = 1, vtu_every = 0;
-    std::vector<long> output_steps;                    // sorted, unique
-    std::filesystem::path out;
-};
-
-[[noreturn]] void fail(const std::string& msg) { pd::io::fail_input(program, msg); }
-
-// 4.-5. Initial and boundary conditions, integration and output. Returns the exit status.
-template <int D, class Model>
-int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& body, pd::Bonds& bonds, Model& model)
-{
-    pd::Explicit<D, Model> sim(body, bonds, model, cfg.rho);
-    pd::NodeSet held;  // fixed points with zero initial displacement; the others hold their own u0
-    for (std::size_t i = 0; i < pc.size(); ++i) {
-        bool moved = false;
-        for (int d = 0; d < D; ++d) {
-            sim.u.c[d][i] = pc.u[d][i];
-            sim.v.c[d][i] = pc.v[d][i];
-            moved = moved || pc.u[d][i] != 0;
-        }
-        if (!pc.fixed[i]) continue;
-        if (!moved) held.push_back(static_cast<int>(i));
-        else
-            for (int d = 0; d < D; ++d)
-                sim.boundary.prescribe({pd::Prescribed::Kind::displacement, {static_cast<int>(i)}, d,
-                                        pd::TimeFunction::constant(pc.u[d][i])});
-    }
-    if (!held.empty()) sim.boundary.fix(held);
-    sim.start();
-
-    pd::io::CsvWriter energy(cfg.out / "energy.csv", {"step", "t_s", "kinetic_J", "strain_J", "external_work_J", "total_J"});
-    std::unique_ptr<pd::io::PvdWriter> pvd;
-    if (cfg.vtu_every > 0) pvd = std::make_unique<pd::io::PvdWriter>(cfg.out / "state.pvd");
-    pd::Energies last;
-    auto output = [&](long n) {  // energy rows every k steps and at the end; states on request
-        const bool e_step = n % cfg.energy_every == 0 || n == cfg.steps;
-        const bool s_step = std::binary_search(cfg.output_steps.begin(), cfg.output_steps.end(), n);
-        const bool v_step = cfg.vtu_every > 0 && (n % cfg.vtu_every == 0 || n == cfg.steps);
-        if (!(e_step || s_step || v_step)) return;
-        last = sim.check_energy();  // throws pd::Unstable before a blown-up state is written
-        if (e_step) energy.row({n, sim.t, last.kinetic, last.strain, last.external_work, last.total()});
-        if (s_step) pd::io::write_state<D>(cfg.out, n, pc, sim.u, sim.v);
-        if (v_step) pd::io::write_state_vtu<D>(cfg.out, n, sim.t, pc, sim.u, sim.v, *pvd);
-    };
-
-    pd::io::Timer timer;
-    pd::io::Progress progress(program, cfg.steps, true);
-    try {
-        output(0);
-        for (long n = 1; n <= cfg.steps; ++n) {
-            sim.step(cfg.dt);
-            output(n);
-            progress.update(n);
-        }
-    } catch (const pd::Unstable& e) {
-        progress.finish();
-        std::cerr << program << ": " << e.what() << std::endl;
-        return 3;
-    }
-    progress.finish();
-    const double wall = timer.seconds();
-    std::printf("\n  step %ld  t = %.6g s  kinetic %.6g J  strain %.6g J  external work %.6g J  total %.6g J\n",
-                cfg.steps, sim.t, last.kinetic, last.strain, last.external_work, last.total());
-    std::printf("%s: done, %ld steps in %.3g s; wrote %s\n", program, cfg.steps, wall, cfg.out.string().c_str());
-    return 0;
-}
+using namespace pd_run;
 
 // 2.-3. Discretisation, bonds, time step and model for dimension D.
 template <int D>
@@ -128,6 +54,12 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     std::printf("points %zu, bonds %zu (ordered pairs), blocks %ld, fixed %ld, isolated %ld\n", body.size(),
                 bonds.size(), pc.blocks(), pc.fixed_count(), isolated);
     if (pc.blocks() > 1) std::printf("note: %ld blocks share one material (per-block materials come later)\n", pc.blocks());
+    std::unique_ptr<HeatRun> heat;
+    if (cfg.heat.model != "none") heat = make_heat<D>(cfg.heat, pc, body, bonds, cfg.out, fail);
+    if (!cfg.mechanics) {
+        std::fflush(stdout);
+        return integrate_heat<D>(cfg, pc, *heat);
+    }
 
     // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too).
     const pd::PMB::Params pmb{.material = cfg.material, .dim = D, .plane = cfg.plane, .measure = cfg.measure};
@@ -146,27 +78,28 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     if (cfg.model == "pmb") {
         pd::PMB model(pmb, cfg.influence, bonds);
         pd::apply_surface_correction(model, body, bonds, cfg.surface);  // none: no change
-        return integrate<D>(cfg, pc, body, bonds, model);
+        return integrate<D>(cfg, pc, body, bonds, model, heat.get());
     }
     if (cfg.model == "correspondence") {
         if constexpr (D >= 2) {
             pd::Correspondence<D> model({.material = cfg.material, .C_hg = cfg.hourglass, .plane = cfg.plane, .measure = cfg.measure},
                                         body, bonds);
-            return integrate<D>(cfg, pc, body, bonds, model);
+            return integrate<D>(cfg, pc, body, bonds, model, heat.get());
         }
         fail("option --model correspondence needs --dim 2 or 3");
     }
     if (cfg.model == "pals") {
         if constexpr (D == 3) {
             pd::PALS model({.material = cfg.material}, body, bonds);
-            return integrate<D>(cfg, pc, body, bonds, model);
+            return integrate<D>(cfg, pc, body, bonds, model, heat.get());
         }
         fail("option --model pals needs --dim 3");
     }
     pd::LPS model({.material = cfg.material, .dim = D, .plane = cfg.plane}, bonds);
     if (cfg.model == "scf") model.apply_shear_correction(body.x);  // LPS with the shear correction factor
-    return integrate<D>(cfg, pc, body, bonds, model);
+    return integrate<D>(cfg, pc, body, bonds, model, heat.get());
 }
+
 
 }  // namespace
 
@@ -174,18 +107,18 @@ int main(int argc, char** argv)
 {
     // 1. Options (SI), cross-checks, echo and params.csv.
     const double automatic = std::numeric_limits<double>::quiet_NaN();
-    pd::io::Options opt(program, "Explicit dynamics (velocity Verlet) of a point cloud read from CSV; see reports/pd_run.md.");
-    const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed]");
+    pd::io::Options opt(program, "Explicit dynamics (velocity Verlet) and heat conduction of a point cloud read from CSV; see reports/pd_run.md.");
+    const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed,T0,T_fixed]");
     const std::string& model = opt.add_string("model", "pmb", "material model (scf = LPS with the shear correction factor)",
                                               {"pmb", "lps", "scf", "pals", "correspondence"});
     const std::string& surface = opt.add_string("surface-correction", "none",
                                                 "surface correction of PMB (energy: Madenci-Oterkus, needs --dx)", {"none", "energy"});
     const double& hourglass = opt.add("hourglass", 0.0, "Littlewood hourglass coefficient C_hg of correspondence (source: 0.02)");
     const int& dim = opt.add_int("dim", 3, "dimension (x, then y, then z are used)");
-    const double& K = opt.add("K", automatic, "bulk modulus, with --G (or give --E --nu)", "Pa");
-    const double& G = opt.add("G", automatic, "shear modulus, with --K", "Pa");
-    const double& E = opt.add("E", automatic, "Young's modulus, with --nu (or give --K --G)", "Pa");
-    const double& nu = opt.add("nu", automatic, "Poisson's ratio, with --E (optional and unused in 1D)");
+    opt.add("K", automatic, "bulk modulus, with --G (or give --E --nu)", "Pa");
+    opt.add("G", automatic, "shear modulus, with --K", "Pa");
+    opt.add("E", automatic, "Young's modulus, with --nu (or give --K --G)", "Pa");
+    opt.add("nu", automatic, "Poisson's ratio, with --E (optional and unused in 1D)");
     const double& rho = opt.add("rho", automatic, "density (required)", "kg/m^3");
     const double& delta = opt.add("delta", automatic, "horizon: bonds with |xi| <= delta (required)", "m");
     const std::string& influence = opt.add_string("influence", "one", "influence function omega", {"one", "inv_xi", "triangular"});
@@ -201,7 +134,11 @@ int main(int argc, char** argv)
     const int& vtu_every = opt.add_int("vtu-every", 0, "VTU snapshot every k steps and at the last step (0 = off)");
     const std::string& out = opt.add_string("out", "pd_run_out", "output folder");
     const int& threads = opt.add_int("threads", 0, "OpenMP threads (0 = OpenMP default)");
-    for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt"}) opt.require_positive(name);
+    const std::string& mech = opt.add_string("mechanics", "on", "off: heat conduction only (needs --heat)", {"on", "off"});
+    const pd_run::HeatOptions heat = pd_run::add_heat_options(opt, automatic);
+    for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt", "k", "cv", "dt-thermal"})
+        opt.require_positive(name);
+    opt.require_at_least("thermal-steps", 0);
     opt.require_range("dim", 1, 3);
     opt.require_at_least("steps", 0);
     opt.require_at_least("energy-every", 1);
@@ -217,22 +154,15 @@ int main(int argc, char** argv)
     if (pv == "pa-pdlammps" && !opt.given("dx")) fail("option --partial-volume pa-pdlammps needs --dx (the lattice spacing)");
     if (surface == "energy" && !opt.given("dx")) fail("option --surface-correction energy needs --dx (the lattice spacing)");
     if (surface == "energy" && model != "pmb") fail("option --surface-correction energy applies to --model pmb only");
+    const bool mechanics = mech == "on";
+    if (!mechanics && heat.heat == "none") fail("option --mechanics off needs --heat agwai|correspondence");
+    for (const char* name : {"E", "nu", "K", "G", "model", "hourglass", "surface-correction", "plane", "dt", "steps"})
+        if (!mechanics && opt.given(name)) fail(std::string("option --") + name + " applies to the mechanics (not --mechanics off)");
+    pd_run::check_heat_options(opt, heat, mechanics, fail);
 
     Run cfg;
     cfg.plane = plane == "strain" ? pd::Plane::strain : pd::Plane::stress;
-    const bool kg = opt.given("K") || opt.given("G"), enu = opt.given("E") || opt.given("nu");
-    if (kg && enu) fail("give the elastic constants as --K --G or as --E --nu (not both pairs, not mixed)");
-    if (!kg && !enu) fail("elastic constants missing: give --E and --nu, or --K and --G");
-    if (kg && !opt.given("K")) fail("option --G needs --K");
-    if (kg && !opt.given("G")) fail("option --K needs --G");
-    if (enu && !opt.given("E")) fail("option --nu needs --E");
-    if (enu && !opt.given("nu") && dim != 1) fail("option --E needs --nu in " + std::to_string(dim) + "D");
-    if (kg) cfg.material = {K, G};
-    else {
-        const std::string msg = pd::validate_elastic(E, dim == 1 ? 0.0 : nu, dim, cfg.plane);
-        if (!msg.empty()) fail("option --" + msg);
-        cfg.material = pd::Elastic::from_E_nu(E, dim == 1 ? 0.0 : nu);  // 1D: only E enters
-    }
+    if (mechanics) cfg.material = elastic_constants(opt, dim, cfg.plane);
     cfg.model = model;
     cfg.hourglass = hourglass;
     cfg.surface = pd::parse_surface_correction(surface);
@@ -244,13 +174,20 @@ int main(int argc, char** argv)
     cfg.influence = pd::Influence::parse(influence);
     cfg.partial_volume = pd::parse_partial_volume(pv);
     cfg.dt = dt;
-    cfg.steps = steps;
+    cfg.steps = mechanics ? steps : heat.steps;
+    cfg.mechanics = mechanics;
+    cfg.heat = {.model = heat.heat, .integrator = heat.integrator, .k = heat.k, .rho_cv = rho * heat.cv, .T0 = heat.T0,
+                .dt = heat.dt, .hourglass = heat.hourglass, .measure = cfg.measure,
+                .correction = pd::parse_thermal_correction(heat.correction), .every = energy_every};
     cfg.energy_every = energy_every;
     cfg.vtu_every = vtu_every;
     try {
-        cfg.output_steps = pd::io::parse_output_steps(out_steps, steps);
+        cfg.output_steps = pd::io::parse_output_steps(out_steps, cfg.steps);
     } catch (const std::invalid_argument& e) {
-        fail(e.what());
+        std::string msg = e.what();
+        const std::size_t at = msg.find("beyond --steps");
+        if (!mechanics && at != std::string::npos) msg.replace(at, 14, "beyond --thermal-steps");  // heat only: thermal steps
+        fail(msg);
     }
     cfg.out = out;
     pd::set_threads(threads);
@@ -269,6 +206,7 @@ int main(int argc, char** argv)
     } catch (const pd::io::PointCloudError& e) {
         fail(e.what());
     }
+    check_cloud(pc, opt, mechanics, heat.heat != "none");
     try {
         if (dim == 1) return run<1>(cfg, pc);
         if (dim == 2) return run<2>(cfg, pc);

@@ -7,9 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scratch_dir.hpp"
-
-#include <sys/wait.h>
+#include "pd_run_harness.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,48 +23,12 @@ using pd::io::read_csv;
 
 namespace {
 
-fs::path base() { return pd_test::scratch_dir(); }
-
-std::string slurp(const fs::path& p)
-{
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-fs::path write_file(const std::string& name, const std::string& text)
-{
-    fs::create_directories(base());
-    const fs::path p = base() / name;
-    std::ofstream(p) << text;
-    return p;
-}
-
-struct Result {
-    int status = -1;
-    std::string out, err;
-    fs::path dir;  // --out folder
-};
-
-// Runs pd_run with `args` and --out base()/tag; stdout and stderr are captured.
-Result pd_run(const std::string& tag, const std::string& args)
-{
-    Result r;
-    r.dir = base() / tag;
-    fs::remove_all(r.dir);
-    fs::create_directories(base());
-    const fs::path so = base() / (tag + ".stdout"), se = base() / (tag + ".stderr");
-    const std::string cmd = std::string(PD_BIN_DIR) + "/pd_run " + args + " --out " + r.dir.string() + " > " +
-                            so.string() + " 2> " + se.string();
-    const int raw = std::system(cmd.c_str());
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(so);
-    r.err = slurp(se);
-    return r;
-}
-
-std::string num(double v) { return pd::io::format_double(v); }
+using pd_test::base;
+using pd_test::num;
+using pd_test::pd_run;
+using pd_test::Result;
+using pd_test::slurp;
+using pd_test::write_file;
 
 // n^3 simple cubic lattice of spacing dx; `extra(i, j, k)` appends the optional columns.
 std::string lattice_csv(int n, double dx, const std::string& extra_header,

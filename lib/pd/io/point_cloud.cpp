@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <system_error>
@@ -17,7 +18,7 @@ const std::array<const char*, 3> coord_names{"x", "y", "z"};
 const std::array<const char*, 3> u_names{"ux", "uy", "uz"};
 const std::array<const char*, 3> v_names{"vx", "vy", "vz"};
 const std::vector<std::string> allowed_columns{"x", "y", "z", "volume", "block", "vx", "vy", "vz",
-                                               "ux", "uy", "uz", "fixed"};
+                                               "ux", "uy", "uz", "fixed", "T0", "T_fixed"};
 
 [[noreturn]] void fail_at(const std::filesystem::path& p, long line, const std::string& column, const std::string& what)
 {
@@ -60,7 +61,7 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
     for (std::size_t c = 0; c < t.header.size(); ++c) {
         const std::string& name = t.header[c];
         if (std::find(allowed_columns.begin(), allowed_columns.end(), name) == allowed_columns.end())
-            fail_at(path, t.header_line, name, "unknown column (allowed: x,y,z,volume,block,vx,vy,vz,ux,uy,uz,fixed)");
+            fail_at(path, t.header_line, name, "unknown column (allowed: x,y,z,volume,block,vx,vy,vz,ux,uy,uz,fixed,T0,T_fixed)");
         if (std::find(t.header.begin(), t.header.begin() + c, name) != t.header.begin() + c)
             fail_at(path, t.header_line, name, "column given twice");
     }
@@ -89,6 +90,13 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
         column_or_zero(v_names[d], pc.v[d]);
     }
     column_or_zero("volume", pc.volume);
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    pc.T0.assign(n, none);
+    pc.T_fixed.assign(n, none);
+    for (std::size_t r = 0; r < n; ++r) {
+        if (t.has_column("T0")) pc.T0[r] = value(r, "T0");
+        if (t.has_column("T_fixed") && !t.rows[r].fields[t.column("T_fixed")].empty()) pc.T_fixed[r] = value(r, "T_fixed");
+    }
     pc.block.assign(n, 1);
     pc.fixed.assign(n, 0);
     pc.line.resize(n);

@@ -7,6 +7,8 @@
 //   vx, vy, vz            optional initial velocity [m/s] (absent = 0)
 //   ux, uy, uz            optional initial displacement [m] (absent = 0)
 //   fixed                 optional 0/1: 1 = the point is held at its initial displacement
+//   T0                    optional initial temperature [K or C] (absent: NaN, the run's --T0)
+//   T_fixed               optional held temperature [same unit]; an empty field = free (NaN)
 // Any other column is an error (a misspelt "vX" must not be ignored silently).
 // With dim < 3 the coordinates beyond dim must be the same for every point (they are ignored by
 // the physics and written back unchanged), and u, v beyond dim must be 0. A fixed point must have
@@ -38,6 +40,8 @@ struct PointCloud {
     std::array<std::vector<double>, 3> v;  // initial velocity [m/s]
     std::vector<long> block;               // block id (1 when the column is absent)
     std::vector<std::uint8_t> fixed;       // 1 = held
+    std::vector<double> T0;                // initial temperature [K or C]; NaN = not given
+    std::vector<double> T_fixed;           // held temperature [K or C]; NaN = free
     std::vector<long> line;                // 1-based line of each point in the file
     std::vector<std::string> columns;      // header as read
 

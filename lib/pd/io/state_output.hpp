@@ -1,6 +1,6 @@
 // pd/io/state_output.hpp -- the per-step outputs of a point-cloud run (problems/pd_run.cpp):
-// `state_step<NNNN>.csv` (node_id,x,y,z,ux,uy,uz,vx,vy,vz; reference x,y,z as read, u and v zero
-// beyond the dimension, 17 significant digits) and `state_step<NNNN>.vtu` with a .pvd series, plus
+// `state_step<NNNN>.csv` (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,T,Q_W_m3]; reference x,y,z as read, u and
+// v zero beyond the dimension, 17 significant digits) and `state_step<NNNN>.vtu` with a .pvd series, plus
 // the parser of the step list "0,100,400".
 #pragma once
 #include "pd/field.hpp"
@@ -50,29 +50,54 @@ inline std::filesystem::path step_file(const std::filesystem::path& out, long n,
     return out / name;
 }
 
+// The fields of one state: motion (u, v) when mechanics runs, temperature T and heat-flow density
+// Q when heat conduction runs (null = not part of the run: the columns are left out).
 template <int D>
-void write_state(const std::filesystem::path& out, long n, const PointCloud& pc, const Field<D>& u, const Field<D>& v)
+struct StateFields {
+    const Field<D>* u = nullptr;             // displacement [m]
+    const Field<D>* v = nullptr;             // velocity [m/s]
+    const std::vector<double>* T = nullptr;  // temperature [K or C, the unit of the input]
+    const std::vector<double>* Q = nullptr;  // heat-flow density into the node [W/m^3]
+};
+
+template <int D>
+void write_state(const std::filesystem::path& out, long n, const PointCloud& pc, const StateFields<D>& s)
 {
-    CsvWriter csv(step_file(out, n, "csv"), {"node_id", "x", "y", "z", "ux", "uy", "uz", "vx", "vy", "vz"}, false);
+    std::vector<std::string> header{"node_id", "x", "y", "z"};
+    if (s.u) header.insert(header.end(), {"ux", "uy", "uz", "vx", "vy", "vz"});
+    if (s.T) header.insert(header.end(), {"T", "Q_W_m3"});
+    CsvWriter csv(step_file(out, n, "csv"), header, false);
     for (std::size_t i = 0; i < pc.size(); ++i) {
         std::vector<CsvCell> row{i, pc.x[0][i], pc.x[1][i], pc.x[2][i]};
-        for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? u.c[d][i] : 0.0);
-        for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? v.c[d][i] : 0.0);
+        if (s.u) {
+            for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? s.u->c[d][i] : 0.0);
+            for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? s.v->c[d][i] : 0.0);
+        }
+        if (s.T) {
+            row.emplace_back((*s.T)[i]);
+            row.emplace_back((*s.Q)[i]);
+        }
         csv.row(row);
     }
     csv.flush();
 }
 
 template <int D>
-void write_state_vtu(const std::filesystem::path& out, long n, double t, const PointCloud& pc, const Field<D>& u,
-                     const Field<D>& v, PvdWriter& pvd)
+void write_state_vtu(const std::filesystem::path& out, long n, double t, const PointCloud& pc, const StateFields<D>& s,
+                     PvdWriter& pvd)
 {
     const std::vector<double> zero;  // components beyond D: padded with zeros by the writer
     auto comp = [&](const Field<D>& f, int d) -> const std::vector<double>& { return d < D ? f.c[d] : zero; };
     VtuWriter w(step_file(out, n, "vtu"));
     w.points(pc.x[0], pc.x[1], pc.x[2]);
-    w.vector("displacement_m", comp(u, 0), comp(u, 1), comp(u, 2));
-    w.vector("velocity_m_per_s", comp(v, 0), comp(v, 1), comp(v, 2));
+    if (s.u) {
+        w.vector("displacement_m", comp(*s.u, 0), comp(*s.u, 1), comp(*s.u, 2));
+        w.vector("velocity_m_per_s", comp(*s.v, 0), comp(*s.v, 1), comp(*s.v, 2));
+    }
+    if (s.T) {
+        w.scalar("T", *s.T);
+        w.scalar("Q_W_m3", *s.Q);
+    }
     w.scalar("block", std::vector<double>(pc.block.begin(), pc.block.end()));
     w.scalar("fixed", std::vector<double>(pc.fixed.begin(), pc.fixed.end()));
     w.time(t);

@@ -1,0 +1,61 @@
+// Runs build/bin/pd_run from a test: scratch files, the command line, captured stdout/stderr and the
+// exit status (shared by tests/test_pd_run.cpp and tests/test_pd_run_heat.cpp).
+#pragma once
+#include "pd/io/csv.hpp"
+
+#include "scratch_dir.hpp"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace pd_test {
+
+inline std::filesystem::path base() { return scratch_dir(); }
+
+inline std::string slurp(const std::filesystem::path& p)
+{
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+inline std::filesystem::path write_file(const std::string& name, const std::string& text)
+{
+    std::filesystem::create_directories(base());
+    const std::filesystem::path p = base() / name;
+    std::ofstream(p) << text;
+    return p;
+}
+
+struct Result {
+    int status = -1;
+    std::string out, err;
+    std::filesystem::path dir;  // --out folder
+};
+
+// Runs pd_run with `args` and --out base()/tag; stdout and stderr are captured.
+inline Result pd_run(const std::string& tag, const std::string& args)
+{
+    Result r;
+    r.dir = base() / tag;
+    std::filesystem::remove_all(r.dir);
+    std::filesystem::create_directories(base());
+    const std::filesystem::path so = base() / (tag + ".stdout"), se = base() / (tag + ".stderr");
+    const std::string cmd = std::string(PD_BIN_DIR) + "/pd_run " + args + " --out " + r.dir.string() + " > " +
+                            so.string() + " 2> " + se.string();
+    const int raw = std::system(cmd.c_str());
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(so);
+    r.err = slurp(se);
+    return r;
+}
+
+inline std::string num(double v) { return pd::io::format_double(v); }
+
+}  // namespace pd_test
