@@ -16,8 +16,10 @@
 //   [--check] [--out DIR]. Writes: oscillation.csv, profiles.csv, summary.csv, params.csv.
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
+#include "pd/heat/heat_cvode.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/list_option.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/lattice.hpp"
@@ -26,28 +28,11 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 
 namespace {
 
 constexpr double T_start = 0, T_held = 100;  // [C] (spec T7/T11)
 constexpr int fd_refine = 4;                 // classical grid 4x finer than the PD cells
-
-std::vector<double> parse_list(const std::string& s)
-{
-    std::vector<double> v;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        std::size_t used = 0;
-        double x = NAN;
-        try { x = std::stod(item, &used); } catch (...) { used = 0; }
-        if (used != item.size() || !(x >= 0)) pd::io::fail_input("correspondence_heat_1d", "option --chg must be a list of numbers >= 0, got '" + s + "'");
-        v.push_back(x);
-    }
-    if (v.empty()) pd::io::fail_input("correspondence_heat_1d", "option --chg is empty");
-    return v;
-}
 
 int run(int argc, char** argv)
 {
@@ -72,7 +57,7 @@ int run(int argc, char** argv)
     opt.echo(std::cout);
     const std::string out = opt.get_string("out");
     opt.save_csv(out + "/params.csv");
-    const std::vector<double> chg = parse_list(opt.get_string("chg"));
+    const std::vector<double> chg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
     const int N = opt.get_flag("quick") ? std::min(opt.get_int("N"), 100) : opt.get_int("N"), m = opt.get_int("m");
     const double l = opt.get("length"), A = opt.get("area"), dx = l / N, dt = opt.get("dt");
     const int steps = int(std::lround(opt.get("t-end") / dt));
@@ -128,7 +113,48 @@ int run(int argc, char** argv)
         prof.row(row);
     }
 
-    // 5. Checks: the source's qualitative statements, as numbers (only for the default C_hg list).
+    // 5. Work-precision at C_hg = 1: final profile error (max over the bar, K) of each integrator
+    //    against CVODE at rtol 1e-10 on the same PD model.
+    {
+        pd::CorrespondenceHeat<1> model({opt.get("k"), 1.0, A}, body, bonds);
+        pd::Conduction<pd::CorrespondenceHeat<1>> heat(model, bonds, std::vector<double>(body.size(), opt.get("rho") * opt.get("c")), loads);
+        const double t_end = steps * dt;
+        auto final_profile = [&](const std::string& scheme, double step, long& n_steps) {
+            std::vector<double> theta(body.size(), T_start);
+            heat.apply_fixed(theta);
+            if (scheme == "cvode") {
+                pd::CvodeOptions co;
+                co.rtol = step, co.atol = step * T_held;
+                pd::HeatCvode<pd::CorrespondenceHeat<1>> cv(heat, model, bonds, theta, 0.0, co);
+                theta = cv.advance(t_end);
+                n_steps = cv.stats().steps;
+                return theta;
+            }
+            n_steps = std::lround(t_end / step);
+            for (long n = 0; n < n_steps; ++n) scheme == "implicit" ? heat.implicit_euler(theta, t_end / n_steps) : heat.explicit_euler(theta, t_end / n_steps);
+            return theta;
+        };
+        long n_ref = 0;
+        const std::vector<double> ref = final_profile("cvode", 1e-10, n_ref);
+        const double dt_crit = pd::thermal_critical_step(model, bonds, heat, std::vector<double>(body.size(), T_start));
+        pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps"});
+        std::printf("work-precision at C_hg = 1 (error: max |T - T_cvode(rtol 1e-10)| at t = %g s; dt_crit %.4g s):\n", t_end, dt_crit);
+        auto record = [&](const std::string& scheme, double step) {
+            pd::io::Timer timer;
+            long n = 0;
+            const auto th = final_profile(scheme, step, n);
+            double e = 0;
+            for (int i = first; i < last; ++i) e = std::max(e, std::abs(th[i] - ref[i]));
+            const bool cv = scheme == "cvode";
+            wp.row({scheme, cv ? t_end / n : t_end / n, cv ? step : NAN, e, timer.seconds(), n});
+            std::printf("  %-8s dt %-9.4g error %-9.3e K  wall %.3f s, %ld steps\n", scheme.c_str(), t_end / n, e, timer.seconds(), n);
+        };
+        for (double f : {0.9, 0.45}) record("explicit", f * dt_crit);
+        for (double h : {10.0, 2.5, 0.625}) record("implicit", h);
+        for (double tol : {1e-4, 1e-7}) record("cvode", tol);
+    }
+
+    // 6. Checks: the source's qualitative statements, as numbers (only for the default C_hg list).
     bool pass = true;
     auto check = [&](bool ok, const char* what) {
         std::printf("check: %-72s %s\n", what, ok ? "ok" : "FAILED");
