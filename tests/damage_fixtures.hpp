@@ -166,8 +166,11 @@ void expect_cut_halves_independent(const Body<D>& body, Make make)
         for (std::size_t n = 0; n < nodes.size(); ++n) {
             py.set(n, y[nodes[n]]);
             sub.set(n, f[nodes[n]]);
-            if (half == 0)
-                for (int d = 0; d < D; ++d) ASSERT_EQ(f2.c[d][nodes[n]], f.c[d][nodes[n]]) << "half A node " << nodes[n];
+            if (half == 0) {
+                for (int d = 0; d < D; ++d) {
+                    ASSERT_EQ(f2.c[d][nodes[n]], f.c[d][nodes[n]]) << "half A node " << nodes[n];
+                }
+            }
         }
         internal_force(pm, pb, py, pf);
         expect_fields_near(sub, pf, half == 0 ? "half A alone" : "half B alone");
