@@ -104,6 +104,12 @@ TEST(Property, CvodeReachesTheExactEnthalpyTime)
     ASSERT_TRUE(r.reached);
     const double exact = pd::ref::adiabatic_heating_time(1, 1, 20, 1200);
     EXPECT_NEAR(r.t, exact, 1e-6 * exact);
+    // Target on the jump of c at 600 C: CVODE's steps shrink there below the spacing of doubles at
+    // t ~ 3e5 s, and the crossing bisection must still end (it looped forever before).
+    const auto r600 = pd::time_to_reach(heat, m.model, m.bonds, std::vector<double>(m.body.size(), 20.0),
+                                        pd::HeatIntegrator::cvode, 0, opt, 2e6, first, 600.0);
+    ASSERT_TRUE(r600.reached);
+    EXPECT_NEAR(r600.t, pd::ref::adiabatic_heating_time(1, 1, 20, 600), 1e-6 * r600.t);
 }
 
 // Stiff scene (tracker issue 4): the 1D Agwai bar of spec T7 with k x 1000 and N = 400 cells, ends
