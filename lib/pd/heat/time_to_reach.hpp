@@ -3,7 +3,7 @@
 //   explicit / implicit Euler: fixed step dt, the crossing linearly interpolated between the two
 //     steps around it (the source's metric, spec/000b T7);
 //   CVODE: one internal step at a time, the crossing located on CVODE's own interpolant by
-//     bisection to 1e-12 of the step (so its error is the integrator's, not the interpolation's).
+//     bisection to 1e-12 of the step or to the spacing of doubles at t, whichever is larger (so its error is the integrator's, not the interpolation's).
 // Returns reached = false when the target is not met before t_max.
 #pragma once
 #include "pd/heat/conduction.hpp"
@@ -64,6 +64,7 @@ ReachResult time_to_reach(Conduction<Model>& heat, const Model& model, const Bon
             double lo = t_prev, hi = t;  // bisection on the interpolant of the last step
             while (hi - lo > 1e-12 * (t - t_prev)) {
                 const double mid = 0.5 * (lo + hi);
+                if (mid <= lo || mid >= hi) break;  // no double between: a tiny step far from t = 0
                 cv.cvode().dense_output(mid, y);
                 (sign * (probe(y) - target) < 0 ? lo : hi) = mid;
             }
