@@ -12,7 +12,7 @@
 //                    heat operator of the model (Q = A theta); fixed rows are identity rows. The sparse LU
 //                    factorisation is kept while dt and rho c do not change; rho c(theta) is taken at
 //                    theta^n (lagged). Unconditionally stable.
-// (CVODE BDF: heat/cvode_heat.hpp.)
+// (CVODE BDF: heat/heat_cvode.hpp.)
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/heat/heat_loop.hpp"
