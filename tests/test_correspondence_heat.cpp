@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "heat_fixtures.hpp"
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -12,13 +14,7 @@
 
 namespace {
 
-template <int D>
-pd::Body<D> cube(int n, double dx, double measure = 1)
-{
-    pd::Vec<D> lo{}, hi{};
-    for (int d = 0; d < D; ++d) hi[d] = n * dx;
-    return pd::box<D>(lo, hi, dx, measure);
-}
+using pd_test::cube;
 
 // Is node i at least two horizons (plus a cell) from every face of the n^D cube? Its family and its
 // neighbours' families are then complete and symmetric.

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "heat_fixtures.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -14,13 +16,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-template <int D>
-pd::Body<D> cube(int n, double dx, double measure = 1)
-{
-    pd::Vec<D> lo{}, hi{};
-    for (int d = 0; d < D; ++d) hi[d] = n * dx;
-    return pd::box<D>(lo, hi, dx, measure);
-}
+using pd_test::cube;
 
 // Index of the node nearest the centre of an n^D cube.
 template <int D>

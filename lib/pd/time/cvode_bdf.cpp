@@ -91,24 +91,26 @@ CvodeBdf::CvodeBdf(std::vector<double> y0, double t0, Rhs rhs, Jacobian jac, con
 
 CvodeBdf::~CvodeBdf() = default;
 
-const std::vector<double>& CvodeBdf::advance(double t_out)
+// One call of CVode towards t_out in the given task mode; keeps t_ and y_ in step with the solver.
+void CvodeBdf::integrate(double t_out, int task, const char* what)
 {
     realtype t = t_;
-    check(CVode(impl_->mem, t_out, impl_->y, &t, CV_NORMAL), "CVode");
+    check(CVode(impl_->mem, t_out, impl_->y, &t, task), what);
     t_ = t;
     const double* p = N_VGetArrayPointer(impl_->y);
     std::copy(p, p + y_.size(), y_.begin());
+}
+
+const std::vector<double>& CvodeBdf::advance(double t_out)
+{
+    integrate(t_out, CV_NORMAL, "CVode");
     return y_;
 }
 
 double CvodeBdf::step(double t_stop)
 {
     check(CVodeSetStopTime(impl_->mem, t_stop), "CVodeSetStopTime");
-    realtype t = t_;
-    check(CVode(impl_->mem, t_stop, impl_->y, &t, CV_ONE_STEP), "CVode (one step)");
-    t_ = t;
-    const double* p = N_VGetArrayPointer(impl_->y);
-    std::copy(p, p + y_.size(), y_.begin());
+    integrate(t_stop, CV_ONE_STEP, "CVode (one step)");
     return t_;
 }
 

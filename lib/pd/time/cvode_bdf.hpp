@@ -48,6 +48,7 @@ public:
     struct Impl;  // SUNDIALS objects and the callbacks' state
 
 private:
+    void integrate(double t_out, int task, const char* what);
     std::unique_ptr<Impl> impl_;
     std::vector<double> y_;
     double t_ = 0;

@@ -136,16 +136,7 @@ public:
 
     Energies energies()  // call after start() or step(): the model's state is at y
     {
-        Energies e;
-        const std::vector<double> W = model.energy_density(bonds, y_);
-        for (std::size_t i = 0; i < body.size(); ++i) {
-            double v2 = 0;
-            for (int d = 0; d < D; ++d) v2 += v.c[d][i] * v.c[d][i];
-            e.kinetic += 0.5 * rho[i] * v2 * body.volume[i];
-            e.strain += W[i] * body.volume[i];
-        }
-        e.external_work = external_work_;
-        return e;
+        return detail::body_energies(model, bonds, body, y_, v, rho, external_work_);
     }
 
     // The guard of verlet.hpp: throws Unstable when KE + SE exceeds energy_limit x (initial + |W_ext|).
@@ -153,7 +144,7 @@ public:
     {
         const Energies e = energies();
         const double mech = e.kinetic + e.strain;
-        if (!std::isfinite(mech) || mech > std::max(energy_limit * (initial_energy_ + std::abs(e.external_work)), energy_floor_)) {
+        if (detail::energy_guard_tripped(e, energy_limit, initial_energy_, energy_floor_)) {
             std::ostringstream m;
             m << "unstable at step " << step_count << " (t = " << t << " s): mechanical energy " << mech << " J exceeds "
               << energy_limit << " x (initial + external work)";
@@ -228,11 +219,7 @@ private:
 
     double constrained_kinetic() const  // [J]
     {
-        double k = 0;
-        for (std::size_t i = 0; i < body.size(); ++i)
-            for (int d = 0; d < D; ++d)
-                if (!free(i, d)) k += 0.5 * rho[i] * v.c[d][i] * v.c[d][i] * body.volume[i];
-        return k;
+        return detail::constrained_kinetic(body, v, rho, [&](std::size_t i, int d) { return !free(i, d); });
     }
 };
 

@@ -17,10 +17,12 @@
 #include "pd/bond_loop.hpp"
 #include "pd/damage/critical_stretch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace pd {
 
@@ -34,6 +36,44 @@ struct Energies {
     double kinetic = 0, strain = 0, external_work = 0;  // [J]
     double total() const { return kinetic + strain - external_work; }
 };
+
+namespace detail {
+// Kinetic and strain energy of a body [J] (the model's state must be at y); shared by the
+// explicit (Explicit) and implicit (Newmark) integrators.
+template <int D, class Model>
+Energies body_energies(Model& model, const Bonds& bonds, const Body<D>& body, const Field<D>& y, const Field<D>& v,
+                       const std::vector<double>& rho, double external_work)
+{
+    Energies e;
+    const std::vector<double> W = model.energy_density(bonds, y);
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        double v2 = 0;
+        for (int d = 0; d < D; ++d) v2 += v.c[d][i] * v.c[d][i];
+        e.kinetic += 0.5 * rho[i] * v2 * body.volume[i];
+        e.strain += W[i] * body.volume[i];
+    }
+    e.external_work = external_work;
+    return e;
+}
+
+// The energy guard: KE + SE non-finite, or above limit x (initial + |W_ext|) and the round-off floor.
+inline bool energy_guard_tripped(const Energies& e, double limit, double initial, double floor)
+{
+    const double mech = e.kinetic + e.strain;
+    return !std::isfinite(mech) || mech > std::max(limit * (initial + std::abs(e.external_work)), floor);
+}
+
+// Kinetic energy of the constrained components [J]; constrained(i, d) says which.
+template <int D, class Constrained>
+double constrained_kinetic(const Body<D>& body, const Field<D>& v, const std::vector<double>& rho, Constrained&& constrained)
+{
+    double k = 0;
+    for (int d = 0; d < D; ++d)
+        for (std::size_t i = 0; i < body.size(); ++i)
+            if (constrained(i, d)) k += 0.5 * rho[i] * v.c[d][i] * v.c[d][i] * body.volume[i];
+    return k;
+}
+}  // namespace detail
 
 template <int D, class Model>
 class Explicit {
@@ -116,27 +156,14 @@ public:
         check_finite();
     }
 
-    Energies energies()
-    {
-        Energies e;
-        const std::vector<double> W = model.energy_density(bonds, y_);
-        for (std::size_t i = 0; i < body.size(); ++i) {
-            double v2 = 0;
-            for (int d = 0; d < D; ++d) v2 += v.c[d][i] * v.c[d][i];
-            e.kinetic += 0.5 * rho[i] * v2 * body.volume[i];
-            e.strain += W[i] * body.volume[i];
-        }
-        e.external_work = external_work_;
-        return e;
-    }
+    Energies energies() { return detail::body_energies(model, bonds, body, y_, v, rho, external_work_); }
 
     // Energy check of the guard; call every k steps (costs one energy evaluation).
     Energies check_energy()
     {
         const Energies e = energies();
         const double mech = e.kinetic + e.strain;
-        const double bound = std::max(energy_limit * (initial_energy_ + std::abs(e.external_work)), energy_floor_);
-        if (!std::isfinite(mech) || mech > bound) {
+        if (detail::energy_guard_tripped(e, energy_limit, initial_energy_, energy_floor_)) {
             std::ostringstream m;
             m << "unstable at step " << step_count << " (t = " << t << " s): mechanical energy " << mech
               << " J exceeds " << energy_limit << " x (initial + external work); fastest node " << fastest_node();
@@ -188,11 +215,7 @@ private:
 
     double constrained_kinetic() const  // [J]
     {
-        double k = 0;
-        for (int d = 0; d < D; ++d)
-            for (std::size_t i = 0; i < body.size(); ++i)
-                if (constrained_[i * D + d]) k += 0.5 * rho[i] * v.c[d][i] * v.c[d][i] * body.volume[i];
-        return k;
+        return detail::constrained_kinetic(body, v, rho, [&](std::size_t i, int d) { return constrained_[i * D + d] != 0; });
     }
 
     int fastest_node() const
