@@ -18,10 +18,12 @@
 //      ADR density: Gershgorin bounds of the reference tangent of each model (exact for PMB; triangle
 //      inequality for LPS, PALS, correspondence: times --bound-factor).
 // Writes: convergence.csv (one row per n, model, correction), summary.csv (finest n), params.csv.
+#include "pd/bc/grips.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
+#include "pd/measure/bar_sections.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
@@ -42,8 +44,7 @@ struct Specimen {
     double dx, delta;    // [m]
     pd::Body<3> body;
     pd::NodeSet left, right;
-    std::vector<int> sec_a, sec_b;  // cross-section layers nearest L/2 -+ delta
-    double dist = 0;                // their distance [m]
+    pd::BarGauge gauge;  // cross-section layers nearest L/2 -+ delta and their distance
 };
 
 struct Outcome {
@@ -91,15 +92,10 @@ Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, const 
               const SolverChoice& sc, bool warm)
 {
     pd::Boundary<3> bc;
-    bc.prescribe({pd::Prescribed::Kind::displacement, s.left, 0, pd::TimeFunction::constant(0)});
-    bc.prescribe({pd::Prescribed::Kind::displacement, s.right, 0, pd::TimeFunction::constant(s.U)});
+    pd::grip_bar_ends(bc, s.left, s.right, pd::TimeFunction::constant(s.U), pd::Grips::axial);
     pd::Field<3> u(s.body.size());
     const double eps = s.U / s.L;
-    for (std::size_t i = 0; warm && i < s.body.size(); ++i) {
-        u.c[0][i] = s.U * std::clamp(s.body.x.c[0][i] / s.L, 0.0, 1.0);
-        u.c[1][i] = -nu_w * eps * (s.body.x.c[1][i] - s.W / 2);
-        u.c[2][i] = -nu_w * eps * (s.body.x.c[2][i] - s.T / 2);
-    }
+    if (warm) pd::uniaxial_bar_field(s.body, s.L, s.W, s.T, s.U, eps, nu_w, pd::Grips::axial, u);
     Outcome o;
     pd::Field<3> f;  // internal force density at the solution [N/m^3]
     if (sc.newton) {
@@ -125,15 +121,10 @@ Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, const 
         f = adr.internal_force_density();
     }
     if (!o.converged) return o;
-    double F = 0;  // axial force the bar exerts on the right grip, reversed: reaction [N]
-    for (int i : s.right) F -= f.c[0][i] * s.body.volume[i];
-    auto mean_ux = [&](const std::vector<int>& set) {
-        double m = 0;
-        for (int i : set) m += u.c[0][i];
-        return m / set.size();
-    };
-    const double sigma = F / (s.W * s.T);                                        // engineering stress [Pa]
-    o.E_meas = sigma / ((mean_ux(s.sec_b) - mean_ux(s.sec_a)) / s.dist);       // (4.37)
+    const double F = pd::axial_reaction(f, s.body, s.right);  // reaction of the loaded grip [N]
+    const double sigma = F / (s.W * s.T);                     // engineering stress [Pa]
+    const double du = pd::mean_axial_displacement(u, s.gauge.sec_b) - pd::mean_axial_displacement(u, s.gauge.sec_a);
+    o.E_meas = sigma / (du / s.gauge.dist);                   // (4.37)
     o.E_end = sigma / eps;
     return o;
 }
@@ -206,22 +197,13 @@ static int run(int argc, char** argv)
                 "conv", "iters", "E_meas_Pa", "E_end_Pa", "rel_error", "wall_s");
     for (int n : ns) {
         // 2. Discretisation: bar plus ceil(grip delta/dx) grip layers outside each end.
-        Specimen s{L, W, T, strain * L, T / n, m * T / n, {}, {}, {}, {}, {}};
+        Specimen s{L, W, T, strain * L, T / n, m * T / n, {}, {}, {}, {}};
         pd::GrippedBar bar = pd::gripped_bar(L, W, T, s.dx, grip * s.delta);
         s.body = std::move(bar.body);
         s.left = std::move(bar.left);
         s.right = std::move(bar.right);
-        const long nx = std::lround(L / s.dx);
-        const long ia = std::lround((L / 2 - s.delta) / s.dx - 0.5), ib = std::lround((L / 2 + s.delta) / s.dx - 0.5);
-        const long a = std::clamp(ia, 0L, nx - 1), b = std::clamp(ib, 0L, nx - 1);
-        s.dist = (b - a) * s.dx;
-        for (std::size_t i = 0; i < s.body.size(); ++i) {
-            const double x = s.body.x.c[0][i];
-            const long layer = std::lround(x / s.dx - 0.5);
-            if (layer == a) s.sec_a.push_back(static_cast<int>(i));
-            if (layer == b) s.sec_b.push_back(static_cast<int>(i));
-        }
-        if (!(s.dist > 0)) opt.fail("option --m too large for the bar: the two measuring sections coincide");
+        s.gauge = pd::bar_gauge(s.body, L, s.dx, s.delta);
+        if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two measuring sections coincide");
         const pd::Bonds bonds = pd::build_bonds(s.body, s.delta);
         // 3. Models; ADR density from each model's stiffness bound (dynamic_relaxation.hpp).
         const pd::PMB::Params pmb_params{.material = mat, .dim = 3};
