@@ -17,6 +17,7 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/time_to_reach.hpp"
 #include "pd/io/convergence.hpp"
+#include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
@@ -100,11 +101,7 @@ int run(int argc, char** argv)
     const bool quick = opt.get_flag("quick");
     pd::ref::HeatBar1D ref_bar{cs.l, cs.k / (cs.rho * cs.c), T_start, T_held};
     const double t50_exact = pd::ref::heat_bar_exact_time_to(ref_bar, 0.5 * cs.l, T_target);
-    bool pass = true;
-    auto check = [&](bool ok, const char* what) {
-        std::printf("check: %-66s %s\n", what, ok ? "ok" : "FAILED");
-        pass = pass && ok;
-    };
+    pd::io::Checks check;
     std::vector<pd::io::SummaryRow> summary;
 
     // 2. A single resolution (--N): t50 against the classical value of the same N and dt.
@@ -120,7 +117,7 @@ int run(int argc, char** argv)
                    {"t50_exact_continuum", t50_exact, 74.163, pd::io::relative_error(t50_exact, 74.163), "s"}};
         check(o.reach.t > t50_fd, "PD diffuses more slowly than classical (source, Fig. 6.1)");
         pd::io::write_summary(out + "/summary.csv", summary);
-        return opt.get_flag("check") && !pass ? 1 : 0;
+        return opt.get_flag("check") && !check.passed() ? 1 : 0;
     }
 
     // 3. The N study (implicit Euler, dt = 10 s): ours, source PD, spec reconstruction, classical.
@@ -172,9 +169,9 @@ int run(int argc, char** argv)
     check(std::abs(e_imp[2] / e_imp[3] - 2) < 0.2, "implicit Euler first order in dt (error ratio 2 +- 0.2)");
     pd::io::write_summary(out + "/summary.csv", summary);
     std::printf("verdict: %s: PD t50 at N = %d: %.3f s (classical %.3f s, source %.3f s); rate %.2f\n",
-                pass ? "PASS" : "FAIL (see the checks above)", Ns.back(), ours[Ns.back()],
+                check.passed() ? "PASS" : "FAIL (see the checks above)", Ns.back(), ours[Ns.back()],
                 pd::ref::heat_bar_fd_time_to(ref_bar, Ns.back(), cs.dt, 0.5 * cs.l, T_target), source_pd.at(Ns.back()), rate);
-    return opt.get_flag("check") && !pass ? 1 : 0;
+    return opt.get_flag("check") && !check.passed() ? 1 : 0;
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
 #include "pd/heat/heat_cvode.hpp"
+#include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
@@ -155,11 +156,7 @@ int run(int argc, char** argv)
     }
 
     // 6. Checks: the source's qualitative statements, as numbers (only for the default C_hg list).
-    bool pass = true;
-    auto check = [&](bool ok, const char* what) {
-        std::printf("check: %-72s %s\n", what, ok ? "ok" : "FAILED");
-        pass = pass && ok;
-    };
+    pd::io::Checks check;
     std::vector<pd::io::SummaryRow> summary;
     for (std::size_t q = 0; q < chg.size(); ++q)
         summary.push_back({"oscillation_chg_" + pd::io::CsvCell(chg[q]).text(), osc[q], NAN, NAN, "K"});
@@ -172,8 +169,8 @@ int run(int argc, char** argv)
         check(rms[5] > rms[4], "C_hg = 10000 departs further from classical than C_hg = 100");
     }
     pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s\n", pass ? "PASS" : "FAIL (see the checks above)");
-    return opt.get_flag("check") && !pass ? 1 : 0;
+    std::printf("verdict: %s\n", check.passed() ? "PASS" : "FAIL (see the checks above)");
+    return opt.get_flag("check") && !check.passed() ? 1 : 0;
 }
 
 }  // namespace

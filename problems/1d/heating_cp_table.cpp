@@ -14,6 +14,7 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/properties.hpp"
 #include "pd/heat/time_to_reach.hpp"
+#include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
@@ -91,11 +92,7 @@ int run(int argc, char** argv)
     const double T_end = opt.get("T-end"), dt = opt.get("dt"), rtol = opt.get("rtol");
     const bool quick = opt.get_flag("quick");
     const auto t_exact = [&](double theta) { return pd::ref::adiabatic_heating_time(cs.rho, cs.s, cs.T0, theta); };
-    bool pass = true;
-    auto check = [&](bool ok, const std::string& what) {
-        std::printf("check: %-74s %s\n", what.c_str(), ok ? "ok" : "FAILED");
-        pass = pass && ok;
-    };
+    pd::io::Checks check;
 
     // 2. History: time to reach each checkpoint temperature of spec V2 (and T-end), three integrators.
     std::vector<double> checkpoints;
@@ -162,9 +159,9 @@ int run(int argc, char** argv)
         summary.push_back({q + "_" + pd::name(s), at_end[s].t, ref_end, pd::io::relative_error(at_end[s].t, ref_end), "s"});
     pd::io::write_summary(out + "/summary.csv", summary);
     std::printf("verdict: %s: time to %g C (%s) %.2f s, reference %.2f s, error %.2e\n",
-                pass ? "PASS" : "FAIL (see the checks above)", T_end, pd::name(main_scheme), at_end[main_scheme].t,
+                check.passed() ? "PASS" : "FAIL (see the checks above)", T_end, pd::name(main_scheme), at_end[main_scheme].t,
                 ref_end, pd::io::relative_error(at_end[main_scheme].t, ref_end));
-    return opt.get_flag("check") && !pass ? 1 : 0;
+    return opt.get_flag("check") && !check.passed() ? 1 : 0;
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 // Writes: summary.csv (row t50, s), work_precision.csv, params.csv.
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/time_to_reach.hpp"
+#include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
@@ -157,19 +158,15 @@ int run(int argc, char** argv)
     }
 
     // 5. Checks and verdict.
-    bool pass = true;
-    auto check = [&](bool ok, const char* what) {
-        std::printf("check: %-70s %s\n", what, ok ? "ok" : "FAILED");
-        pass = pass && ok;
-    };
+    pd::io::Checks check;
     check(pdr.t > t50_classical, "PD prism diffuses more slowly than the classical one (source Fig. 6.3)");
     check(std::abs(t50_classical / t50_exact - 1) < 0.01, "classical 3D reference within 1 % of the 1D continuum value");
     // The reconstruction used the same conventions; 0.1 % covers its averaging/interpolation details.
     if (published) check(std::abs(pdr.t / t50_recon - 1) < 1e-3, "t50 within 0.1 % of the spec reconstruction 88.768 s");
     pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: t50 = %.3f s (source %.3f s, classical %.3f s)\n", pass ? "PASS" : "FAIL (see the checks above)",
+    std::printf("verdict: %s: t50 = %.3f s (source %.3f s, classical %.3f s)\n", check.passed() ? "PASS" : "FAIL (see the checks above)",
                 pdr.t, t50_source, t50_classical);
-    return opt.get_flag("check") && !pass ? 1 : 0;
+    return opt.get_flag("check") && !check.passed() ? 1 : 0;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
 #include "pd/io/convergence.hpp"
+#include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
@@ -98,11 +99,7 @@ int run(int argc, char** argv)
         {9, {0.796, 1.137}}, {11, {0.838, 1.124}}, {15, {0.891, 1.110}}, {21, {0.934, 1.100}}};
     const std::vector<int> ns = opt.get_flag("quick") ? std::vector<int>{3, 5, 7} : std::vector<int>{3, 5, 7, 9, 11, 15, 21};
     pd::io::ConvergenceTable table({}, {"ratio_plain", "ratio_tcf", "ratio_tcf_pair_mean", "recon_plain", "recon_tcf", "cold_minus_hot_plain"});
-    bool pass = true;
-    auto check = [&](bool ok, const std::string& what) {
-        std::printf("check: %-72s %s\n", what.c_str(), ok ? "ok" : "FAILED");
-        pass = pass && ok;
-    };
+    pd::io::Checks check;
     std::map<int, Measured> plain, tcf;
     for (int n : ns) {
         plain[n] = measure(l, a, n, m, k, pd::ThermalCorrection::none);
@@ -127,9 +124,9 @@ int run(int argc, char** argv)
         check(tcf[ns[q]].hot > 1, "TCF ratio above 1 (source: 'from above'), n = " + std::to_string(ns[q]));
     }
     pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: n = %d: plain %.3f, TCF %.3f\n", pass ? "PASS" : "FAIL (see the checks above)", ns.back(),
+    std::printf("verdict: %s: n = %d: plain %.3f, TCF %.3f\n", check.passed() ? "PASS" : "FAIL (see the checks above)", ns.back(),
                 plain[ns.back()].hot, tcf[ns.back()].hot);
-    return opt.get_flag("check") && !pass ? 1 : 0;
+    return opt.get_flag("check") && !check.passed() ? 1 : 0;
 }
 
 }  // namespace
