@@ -1,4 +1,7 @@
 // Correspondence heat conduction with hourglass suppression (spec/000b sec. 3.4-3.5, V11, V12).
+// Tolerances: 1e-9 relative for gradients and the assembled operator (a 3x3 inverse and ~120-term
+// sums: round-off of a few hundred ulps); 1e-8 for the quadratic-field Q, whose terms are ~(x/dx)^2
+// larger than the result and cancel (x up to 16 dx).
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
 #include "pd/lattice.hpp"

@@ -1,4 +1,8 @@
 // Agwai heat conduction, the heat loop and the Euler integrators (spec/000b sec. 3, V8, V12).
+// Tolerances: 1e-10 on kappa_1 (GSL quadrature of M_1 to 1e-12 relative); 1e-9 relative on
+// lattice sums of Q (~100-300 terms of mixed sign, each ~|Q|: cancellation of a few hundred ulps of
+// the term scale); 1e-12 on the critical step and held/linear fields (a handful of roundings);
+// 1e-10 on the stored heat (200 steps of ~40 nodes each accumulate round-off).
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/heat_cvode.hpp"
