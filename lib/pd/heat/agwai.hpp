@@ -60,7 +60,7 @@ struct Agwai {
         if (!(p.k > 0)) throw std::invalid_argument("Agwai: conductivity k must be positive");
         if (!(p.measure > 0)) throw std::invalid_argument("Agwai: measure (1D area, 2D thickness) must be positive");
         const double M1 = horizon_moment(Influence{}, 1, b.delta, D, p.measure);
-        kappa1 = 2.0 * D * p.k / M1;
+        kappa1 = agwai_micro_conductivity(p.k, D, b.delta, p.measure);
         if (p.correction != ThermalCorrection::none)
             for (std::size_t i = 0; i < b.nodes(); ++i) {
                 double S = 0;
