@@ -9,6 +9,9 @@
 // A velocity-prescribed component ends the step at g(t_{n+1}).
 // Damage: bonds break before the force evaluation; a model with recompute(bonds) gets it called
 // whenever bonds broke.
+// History models (viscoelastic, plastic): a model with set_time_step(dt) gets the step before the
+// force evaluation (0 in start()), which evaluates the trial state from the committed history, and
+// commit() after it, once per step; models without these members compile as before.
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
 // (initial energy + |external work|) and above a round-off floor (the whole mass moving at
 // 1e-10 m/s: a scene at rest stays quiet), throws Unstable naming the step and the node.
@@ -105,7 +108,9 @@ public:
         constrained_.assign(body.size() * D, 0);
         for (const auto& p : boundary.prescribed)
             for (int i : p.nodes) constrained_[i * D + p.component] = 1;
+        if constexpr (requires { model.set_time_step(0.0); }) model.set_time_step(0.0);  // history: the initial state is reached instantly
         evaluate();
+        if constexpr (requires { model.commit(); }) model.commit();
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
         double mass = 0;  // [kg]
@@ -133,7 +138,9 @@ public:
         for (int d = 0; d < D; ++d) b_prev_.c[d] = b_.c[d];
         t += dt;
         ++step_count;
+        if constexpr (requires { model.set_time_step(dt); }) model.set_time_step(dt);
         evaluate();
+        if constexpr (requires { model.commit(); }) model.commit();
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < n; ++i) {
                 if (constrained_[i * D + d]) continue;
