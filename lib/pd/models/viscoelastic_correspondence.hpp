@@ -1,0 +1,117 @@
+// Correspondence viscoelastic model: Flanagan-Taylor correspondence (models/correspondence.hpp,
+// Law::flanagan_taylor) plus one Maxwell branch on the unrotated deviatoric stress (Biondani 2018
+// sec. 7.3; spec/000c sec. 1.5 and erratum 4). Per node, each step:
+//   1. Flanagan-Taylor elastic update from the committed state: sigma_hat^{n+1}, s_hat = dev(sigma_hat)
+//   2. sigma_hat_0 = sigma_hat + gamma_b s_hat                                              (7.29)
+//   3. q^{n+1} = e q^n + (1 - e) gamma_b s_hat^n + beta gamma_b (s_hat^{n+1} - s_hat^n)        (7.19)
+//      (forcing gamma_b s_hat, the consistent Simo-Hughes form recommended by the spec, erratum 4),
+//      e = exp(-dt/tau_b), beta = 1 - (tau_b/dt)(1 - e) (laws/maxwell.hpp: exact for s_hat linear in the step)
+//   4. sigma = R (sigma_hat_0 - q) R^T                                                       (7.16)
+//   5. P = J sigma F^-T and the force state by the wrapped model's point pass.
+// So the deviatoric response relaxes from G (1 + gamma_b) to G with time tau_b, and the volumetric
+// response is the elastic K. In the strain form of laws/maxwell.hpp, x = s_hat/(2G) and the branch
+// modulus is 2 G gamma_b (q = 2 G gamma_b h); the dissipated energy of the step per node [J/m^3] is
+// (2 G gamma_b / tau_b) int (x - h):(x - h) dt, exact per step.
+// History protocol (as models/viscoelastic_lps.hpp): set_time_step(dt), point_pass(bonds, y) = trial
+// state at y from the committed state (sigma_hat, R, V, q, s_hat, configuration y_c; no accumulation),
+// commit() after each accepted step (time/verlet.hpp calls both). The Flanagan-Taylor update runs over
+// the step from y_c to y as in models/load_step.hpp: mid-step configuration (y_c + y)/2 and velocity
+// (y - y_c) over a pseudo step 1 (the update depends on v dt only); dt enters only the Maxwell branch.
+// Uses only the public members of Correspondence<3>; it does not copy its loops.
+#pragma once
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
+#include "pd/laws/maxwell.hpp"
+#include "pd/models/correspondence.hpp"
+#include "pd/parallel.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+class ViscoelasticCorrespondence {
+public:
+    static constexpr bool has_point_pass = true;
+    static constexpr bool ordinary = false;
+    using Model = Correspondence<3>;
+    using Mat = Model::Mat;
+    struct Params {
+        double gamma_b = 1;  // G_b / G [-] (>= 0)
+        double tau_b = 1;    // relaxation time [s] (> 0)
+    };
+    Model& model;                     // Law::flanagan_taylor; its sigma is overwritten by point_pass
+    double gamma_b = 0, tau_b = 1;    // [-], [s]
+    double dt = 0;                    // step of the trial state [s]
+    std::vector<Mat> q, s_hat;        // trial internal stress q^{n+1}, elastic s_hat^{n+1} [Pa]
+    std::vector<double> dissipation;  // energy dissipated in the trial step per node [J/m^3]
+
+    // y0: the configuration the model's present state belongs to (usually the reference x) [m].
+    ViscoelasticCorrespondence(Model& m, const Params& p, const Field<3>& y0)
+        : model(m), gamma_b(p.gamma_b), tau_b(p.tau_b), q(m.F.size(), Mat::Zero()), s_hat(m.F.size(), Mat::Zero()),
+          dissipation(m.F.size(), 0.0), y_c_(y0), y_t_(y0)
+    {
+        if (m.par.law != Model::Law::flanagan_taylor) throw std::invalid_argument("ViscoelasticCorrespondence: needs Law::flanagan_taylor");
+        if (!(p.gamma_b >= 0)) throw std::invalid_argument("ViscoelasticCorrespondence: gamma_b must be >= 0");
+        if (!(p.tau_b > 0)) throw std::invalid_argument("ViscoelasticCorrespondence: tau_b must be positive");
+        if (y0.size() != m.F.size()) throw std::invalid_argument("ViscoelasticCorrespondence: configuration size differs from the model");
+        q_c_ = q, s_hat_c_ = s_hat;
+        sigma_hat_c_ = model.sigma_hat, R_c_ = model.R, V_c_ = model.V;
+    }
+
+    void set_time_step(double step)
+    {
+        if (!(step >= 0)) throw std::invalid_argument("ViscoelasticCorrespondence: time step must be >= 0");
+        dt = step;
+    }
+
+    // Trial state at y (steps 1-5 of the header).
+    void point_pass(const Bonds& b, const Field<3>& y)
+    {
+        if (y.size() != y_c_.size()) throw std::invalid_argument("ViscoelasticCorrespondence: configuration size differs");
+        model.sigma_hat = sigma_hat_c_, model.R = R_c_, model.V = V_c_;
+        y_m_.resize(y.size());
+        v_.resize(y.size());
+        for (int d = 0; d < 3; ++d)
+            for (std::size_t i = 0; i < y.size(); ++i) {
+                y_m_.c[d][i] = 0.5 * (y_c_.c[d][i] + y.c[d][i]);  // mid-step configuration [m]
+                v_.c[d][i] = y.c[d][i] - y_c_.c[d][i];            // velocity over the pseudo step 1 [m]
+            }
+        model.update_stress(b, y_m_, v_, 1.0);
+        const laws::MaxwellCoefficients c = laws::maxwell_coefficients(dt, tau_b);
+        const double k_b = 2 * model.par.material.G * gamma_b;  // branch modulus 2 G_b [Pa]
+        parallel_for(y.size(), [&](std::size_t i) {
+            const Mat& sh = model.sigma_hat[i];
+            s_hat[i] = sh - sh.trace() / 3 * Mat::Identity();                                  // deviator
+            q[i] = laws::maxwell_update<Mat>(q_c_[i], gamma_b * s_hat_c_[i], gamma_b * s_hat[i], c);  // (7.19)
+            model.sigma[i] = model.R[i] * (sh + gamma_b * s_hat[i] - q[i]) * model.R[i].transpose();  // (7.16), (7.29)
+            // Dissipation in stress units: (1/k_b) int r_sigma:r_sigma dt / tau_b, r_sigma = k_b (x - h).
+            dissipation[i] = k_b > 0 ? laws::maxwell_dissipation<Mat>(1.0, q_c_[i], gamma_b * s_hat_c_[i], gamma_b * s_hat[i], c) / k_b : 0.0;
+        });
+        model.point_pass(b, y);
+        y_t_ = y;
+    }
+
+    // The trial state becomes the committed one.
+    void commit()
+    {
+        y_c_ = y_t_;
+        sigma_hat_c_ = model.sigma_hat, R_c_ = model.R, V_c_ = model.V;
+        q_c_ = q, s_hat_c_ = s_hat;
+    }
+
+    template <class Pass>
+    void with_kernel(Pass&& pass) const { model.with_kernel(pass); }
+    Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }
+    template <int D>
+    std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const { return model.energy_density(b, y); }
+
+    // Viscous stress gamma_b s_hat - q of node i, unrotated [Pa].
+    Mat viscous_stress(std::size_t i) const { return gamma_b * s_hat[i] - q[i]; }
+
+private:
+    Field<3> y_c_, y_t_, y_m_, v_;
+    std::vector<Mat> sigma_hat_c_, R_c_, V_c_, q_c_, s_hat_c_;
+};
+
+}  // namespace pd
