@@ -1,0 +1,38 @@
+// pd/laws/elastic.hpp -- isotropic linear elasticity as a point law (knows nothing of bonds).
+//   sigma = K tr(eps) I + 2 G dev(eps),  dev(a) = a - tr(a)/3 I                     (Hooke)
+//   von Mises equivalent stress sigma_eff = sqrt(3/2 s:s), s = dev(sigma)    (spec/000b eq. 5.8)
+// Small-strain, 3D. K bulk and G shear modulus, as pd::Elastic (material.hpp).
+#pragma once
+#include <Eigen/Dense>
+
+#include <cmath>
+
+namespace pd::laws {
+
+using Mat3 = Eigen::Matrix3d;
+
+// Deviator a - tr(a)/3 I.
+inline Mat3 deviator(const Mat3& a) { return a - a.trace() / 3 * Mat3::Identity(); }
+
+// sigma_eff = sqrt(3/2 s:s) of the deviator s [Pa].
+inline double von_mises(const Mat3& s)
+{
+    const Mat3 d = deviator(s);
+    return std::sqrt(1.5 * (d.array() * d.array()).sum());
+}
+
+struct IsotropicElastic {
+    double K = 0;  // bulk modulus [Pa]
+    double G = 0;  // shear modulus [Pa]
+
+    // sigma = K tr(eps) I + 2 G dev(eps) [Pa], eps the (elastic) small strain [-].
+    Mat3 stress(const Mat3& eps) const { return K * eps.trace() * Mat3::Identity() + 2 * G * deviator(eps); }
+    // Strain energy density W = K tr(eps)^2/2 + G dev(eps):dev(eps) [J/m^3].
+    double energy(const Mat3& eps) const
+    {
+        const Mat3 d = deviator(eps);
+        return 0.5 * K * eps.trace() * eps.trace() + G * (d.array() * d.array()).sum();
+    }
+};
+
+}  // namespace pd::laws

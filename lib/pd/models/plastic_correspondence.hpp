@@ -1,0 +1,89 @@
+// pd/models/plastic_correspondence.hpp -- correspondence J2 / Johnson-Cook plasticity (spec/000b
+// sec. 2.1, 2.3, 2.7), a wrapper around Correspondence<3> (models/correspondence.hpp; public
+// members point_pass, F, sigma, with_kernel, bond_force only).
+// Kinematics (documented choice): small-strain TOTAL form, history = committed plastic strain
+// tensor eps_p and ep per node (laws/j2.hpp j2_strain_update):
+//   eps = sym(F) - I,  sigma_trial = K tr(eps) I + 2 G dev(eps - eps_p_c),  radial return (5.15)-(5.21),
+//   eps_p = eps_p_c + dl 3 s_trial/(2 sigma_eff_trial),  ep = ep_c + dl.
+// The Cauchy stress sigma of the return is handed to the wrapped model (Law::flanagan_taylor, whose
+// point_pass maps a given sigma to P = J sigma F^-T, P K^-1 and the bond forces); so each
+// point_pass runs the model's point pass twice: once for F, once for P after the return. At
+// small strain P = sigma (1 + O(eps)). Not objective under large rotations (small-strain form;
+// the source's Flanagan-Taylor variant would be, sec. 2.7); the T6 bar has no rotation.
+// Hourglass control (C_hg) acts as in the elastic model. History protocol: plastic_points.hpp.
+#pragma once
+#include "pd/bond_loop.hpp"
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
+#include "pd/laws/elastic.hpp"
+#include "pd/laws/j2.hpp"
+#include "pd/models/correspondence.hpp"
+#include "pd/models/plastic_points.hpp"
+#include "pd/parallel.hpp"
+#include "pd/time/stiffness_bound.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+struct PlasticCorrespondence {
+    static constexpr bool has_point_pass = true;
+    static constexpr bool ordinary = false;
+    using C3 = Correspondence<3>;
+    C3 model;                                 // Law::flanagan_taylor: P from the sigma set here
+    laws::IsotropicElastic el;
+    PlasticPoints pts;
+    std::vector<laws::J2History> hist_c, hist;  // committed and trial plastic strain per node
+
+    // p.law is overridden (see header); p.material gives K and G.
+    PlasticCorrespondence(C3::Params p, const Body<3>& body, const Bonds& b, const laws::JohnsonCook& law, double beta_TQ = 0.9)
+        : model(with_given_stress(p), body, b), el{p.material.K, p.material.G}, pts(law, beta_TQ, b.nodes()),
+          hist_c(b.nodes()), hist(b.nodes())
+    {
+    }
+
+    void set_time_step(double dt) { pts.set_time_step(dt); }
+    void commit()
+    {
+        hist_c = hist;
+        pts.commit();
+    }
+
+    // Trial state at y from the committed history (header).
+    void point_pass(const Bonds& b, const Field<3>& y)
+    {
+        model.point_pass(b, y);  // F at y
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            const laws::Mat3 eps = 0.5 * (model.F[i] + model.F[i].transpose()) - laws::Mat3::Identity();
+            if (pts.is_plastic(i)) {
+                const laws::J2Update u = laws::j2_strain_update(el, pts.law, eps, hist_c[i], pts.dt, pts.theta(i));
+                model.sigma[i] = u.stress;
+                hist[i] = u.history;
+                pts.record(i, u.scalar);
+            } else {
+                model.sigma[i] = el.stress(eps);
+                laws::ScalarReturn r;
+                r.sigma_eff = laws::von_mises(model.sigma[i]);
+                pts.record(i, r);
+            }
+        });
+        model.point_pass(b, y);  // P = J sigma F^-T, P K^-1 at y
+    }
+
+    template <class Pass>
+    void with_kernel(Pass&& pass) const { model.with_kernel(pass); }
+    Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }
+
+private:
+    static C3::Params with_given_stress(C3::Params p)
+    {
+        p.law = C3::Law::flanagan_taylor;
+        return p;
+    }
+};
+
+// ADR density: the elastic correspondence bound (the plastic tangent is softer).
+inline Field<3> stiffness_bound(const PlasticCorrespondence& w, const Bonds& b, const Field<3>& x) { return stiffness_bound(w.model, b, x); }
+
+}  // namespace pd

@@ -1,0 +1,92 @@
+// pd/models/plastic_lps.hpp -- ordinary (LPS) J2 / Johnson-Cook plasticity with radial return
+// (Biondani 2018 sec. 5.3; spec/000b sec. 2.4-2.5), composed with models/lps.hpp (public members
+// only). Per node i, from the committed plastic back extension e_dp per bond and ep_i:
+//   e    = |Y| - |xi|,  e_de = e - theta_i |xi|/3 - e_dp                      (sec. 2.4 step 2)
+//   W_d  = (alpha_i/2) sum_j omega e_de^2 V_j,  sigma_eff_trial = sqrt(6 G W_d)   (5.33), (5.36)
+//   scalar return (laws/j2.hpp): sigma_eff_trial - 3 G dl - sigma_y(ep + dl, dl/dt, theta) = 0  (5.48)
+//   t_d  = alpha_i omega e_de sigma_y / sigma_eff_trial (radial return, 5.46)
+//   e_dp += 3 G dl e_de / sigma_eff_trial                                       (5.40)
+// The flow rule (5.40), (m/5) t_d/(omega sigma_eff) dl with t_d the returned state, equals
+// 3 G dl e_de_trial/sigma_eff_trial for alpha = 15 G/m; written with alpha_i it stays consistent
+// with a shear correction alpha_i = SCF 15 G/m (the [RECON] m/(5 SCF) of sec. 2.4), so the return
+// factor is 3 G in both cases. Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y| with
+// t = omega (3 K theta |xi| / m + t_d) (4.11); t_j<-xi> reads the twin bond's t_d.
+// 3D, undamaged scenes only (the family sums use every bond). History protocol: plastic_points.hpp.
+#pragma once
+#include "pd/bond_loop.hpp"
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
+#include "pd/models/lps.hpp"
+#include "pd/models/plastic_points.hpp"
+#include "pd/parallel.hpp"
+#include "pd/time/stiffness_bound.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+struct PlasticLPS {
+    static constexpr bool has_point_pass = true;
+    LPS lps;                         // elastic LPS: m, theta, alpha, p_coef, wV
+    PlasticPoints pts;               // law, ep, outputs
+    std::vector<double> edp_c, edp;  // committed and trial plastic back extension per bond [m]
+    std::vector<double> tdev;        // trial deviatoric force scalar alpha_i e_de scale (no omega) [Pa/m^4]
+    const std::int64_t* reverse = nullptr;
+
+    PlasticLPS(const LPS::Params& p, const Bonds& b, const laws::JohnsonCook& law, double beta_TQ = 0.9)
+        : lps(p, b), pts(law, beta_TQ, b.nodes()), edp_c(b.size(), 0.0), edp(b.size(), 0.0), tdev(b.size(), 0.0),
+          reverse(b.reverse.data())
+    {
+        if (p.dim != 3) throw std::invalid_argument("PlasticLPS: written for 3D");
+    }
+
+    void set_time_step(double dt) { pts.set_time_step(dt); }
+    void commit()
+    {
+        edp_c = edp;
+        pts.commit();
+    }
+
+    // Trial state at y from the committed history (header).
+    void point_pass(const Bonds& b, const Field<3>& y)
+    {
+        if (b.has_damage()) throw std::invalid_argument("PlasticLPS: damaged scenes are not supported");
+        lps.point_pass(b, y);
+        const double G = lps.G;
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            const double th = lps.theta[i] / 3;
+            auto e_de = [&](std::int64_t k) {
+                const int j = b.partner[k];
+                double Y2 = 0;
+                for (int d = 0; d < 3; ++d) { const double Yd = y.c[d][j] - y.c[d][i]; Y2 += Yd * Yd; }
+                return std::sqrt(Y2) - b.length[k] * (1 + th) - edp_c[k];
+            };
+            double sum = 0;  // sum omega e_de^2 V [m^5]
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) { const double e = e_de(k); sum += lps.wV[k] * e * e; }
+            const double trial = std::sqrt(6 * G * 0.5 * lps.alpha[i] * sum);  // sqrt(6 G W_d) (5.36)
+            const laws::ScalarReturn r = pts.scalar_return(i, G, trial);
+            const double scale = r.plastic ? r.sigma_eff / trial : 1.0;             // (5.46)
+            const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;        // (5.40)
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                const double e = e_de(k);
+                tdev[k] = lps.alpha[i] * scale * e;
+                edp[k] = edp_c[k] + flow * e;
+            }
+        });
+    }
+
+    // (t_i + t_j) V_j / |Y| with t = omega (p_coef theta |xi| + t_d); omega V_j = wV.
+    double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
+    {
+        const double L = lps.bonds->length[k];
+        const double t = L * (lps.p_coef[i] * lps.theta[i] + lps.p_coef[j] * lps.theta[j]) + tdev[k] + tdev[reverse[k]];
+        return t * lps.wV[k] / ylen;
+    }
+};
+
+// ADR density: the elastic LPS bound (the plastic tangent is softer).
+inline Field<3> stiffness_bound(const PlasticLPS& model, const Bonds& b, const Field<3>& x) { return stiffness_bound(model.lps, b, x); }
+
+}  // namespace pd

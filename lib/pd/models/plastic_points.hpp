@@ -1,0 +1,66 @@
+// pd/models/plastic_points.hpp -- the per-node plastic state shared by the PD plasticity models
+// (plastic_lps.hpp, plastic_correspondence.hpp): Johnson-Cook law, which nodes are plastic, the
+// node temperatures, the committed and trial equivalent plastic strain, and the per-step outputs.
+// History protocol (also used by the viscoelastic models): set_time_step(dt) sets the step;
+// point_pass(bonds, y) evaluates the TRIAL state at y from the COMMITTED history (idempotent: no
+// accumulation over solver iterations); commit() makes the trial history the committed one.
+// Dissipated power (spec/000b eqs. 5.22-5.23, 5.51): p_i = beta_TQ sigma_y dlambda / dt [W/m^3],
+// the heat source of a thermo-mechanical scene (heat_source, after point_pass).
+#pragma once
+#include "pd/laws/j2.hpp"
+#include "pd/laws/johnson_cook.hpp"
+
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+struct PlasticPoints {
+    laws::JohnsonCook law;
+    double beta_TQ = 0.9;                 // Taylor-Quinney factor [-]
+    double dt = 1;                        // step of the trial evaluation [s] (quasi-static: any, C = 0)
+    std::vector<std::uint8_t> plastic;    // 1: J2 return at this node, 0: elastic; empty = all plastic
+    std::vector<double> temperature;      // node temperature [law's unit]; empty = law.theta_ref
+    std::vector<double> ep_c, ep;         // committed and trial equivalent plastic strain [-]
+    std::vector<double> dlambda;          // trial plastic multiplier of the step [-]
+    std::vector<double> sigma_eff;        // trial end-of-step von Mises stress [Pa]
+    std::vector<double> heat_source;      // beta_TQ sigma_y dlambda / dt [W/m^3]
+
+    PlasticPoints() = default;
+    PlasticPoints(const laws::JohnsonCook& law, double beta_TQ, std::size_t n)
+        : law(law), beta_TQ(beta_TQ), ep_c(n, 0.0), ep(n, 0.0), dlambda(n, 0.0), sigma_eff(n, 0.0), heat_source(n, 0.0)
+    {
+        law.validate();
+        if (!(beta_TQ >= 0 && beta_TQ <= 1)) throw std::invalid_argument("PlasticPoints: beta_TQ must lie in [0, 1]");
+    }
+
+    void set_time_step(double step)
+    {
+        if (!(step > 0)) throw std::invalid_argument("set_time_step: dt must be > 0");
+        dt = step;
+    }
+    bool is_plastic(std::size_t i) const { return plastic.empty() || plastic[i]; }
+    double theta(std::size_t i) const { return temperature.empty() ? law.theta_ref : temperature[i]; }
+
+    // The scalar return (j2.hpp) of node i from its committed ep, recorded as the trial state;
+    // an elastic node records sigma_eff_trial only.
+    laws::ScalarReturn scalar_return(std::size_t i, double G, double trial)
+    {
+        laws::ScalarReturn r;
+        r.sigma_eff = trial;
+        if (is_plastic(i)) r = laws::radial_return(law, G, trial, ep_c[i], dt, theta(i));
+        record(i, r);
+        return r;
+    }
+    void record(std::size_t i, const laws::ScalarReturn& r)
+    {
+        dlambda[i] = r.dlambda;
+        ep[i] = ep_c[i] + r.dlambda;
+        sigma_eff[i] = r.sigma_eff;
+        heat_source[i] = beta_TQ * r.dissipation / dt;
+    }
+    void commit() { ep_c = ep; }
+};
+
+}  // namespace pd
