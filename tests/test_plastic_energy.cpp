@@ -104,6 +104,24 @@ TEST(PlasticEnergy, LPSWorkEqualsStoredPlusDissipated)
     EXPECT_GT(e1 / e2, 1.6);  // first-order convergence: ratio 2 expected (measured 2.07)
 }
 
+// With Peridigm's shear correction (alpha_i = SCF_i 15 G/m_i, models/scf.hpp) the flow written
+// with alpha_i (3 G dl e_de / sigma_eff, plastic_lps.hpp header) must keep the balance: the
+// [RECON] m/(5 SCF) rule of spec/000b sec. 2.4.
+TEST(PlasticEnergy, LPSWithShearCorrectionWorkEqualsStoredPlusDissipated)
+{
+    auto make = [](const Body<3>& body, const Bonds& b) {
+        PlasticLPS m({.material = al, .dim = 3}, b, soft);
+        m.lps.apply_shear_correction(body.x);
+        return m;
+    };
+    const auto [e1, share] = balance(make, 50);
+    const auto [e2, share2] = balance(make, 100);
+    std::printf("LPS+SCF: error %.3e (50 steps), %.3e (100 steps), dissipated share %.3f\n", e1, e2, share2);
+    EXPECT_GT(share2, 0.1);
+    EXPECT_LT(e2, 2e-3);
+    EXPECT_GT(e1 / e2, 1.6);
+}
+
 TEST(PlasticEnergy, PALSWorkEqualsStoredPlusDissipated)
 {
     auto make = [](const Body<3>& body, const Bonds& b) { return PlasticPALS({.material = al}, body, b, soft); };

@@ -11,7 +11,7 @@
 // sigma_eff and plastic strain ep against the hardening curve A + B ep^n, and ep at a section
 // corner; ep across the mid-section at first yield there and at the end.
 // Engineering yield: 0.2 % offset on the gauge curve with the slope of the first (elastic) step.
-// Run: jc_bar_3d [--model all|correspondence|lps|pals] [--cells 4] [--steps 200] [--strain 0.05]
+// Run: jc_bar_3d [--model all|correspondence|lps|lps-scf|pals] [--cells 4] [--steps 200] [--strain 0.05]
 //      [--E --nu --A --B --n] [--C-hg 0.02] [--tol 1e-6] [--quick] [--check] [--out DIR]
 //      (density 2810 kg/m^3 plays no part in the quasi-static solve.)
 // Writes: curve_<model>.csv, midsection_<model>.csv, summary.csv, params.csv.
@@ -134,7 +134,7 @@ static int run(int argc, char** argv)
     double& C_hg = opt.add("C-hg", 0.02, "correspondence hourglass coefficient");
     double& tol = opt.add("tol", 1e-6, "ADR relative residual tolerance");
     int& max_iter = opt.add_int("max-iter", 200000, "ADR iteration limit per load step");
-    std::string& which = opt.add_string("model", "all", "material model", {"all", "correspondence", "lps", "pals"});
+    std::string& which = opt.add_string("model", "all", "material model", {"all", "correspondence", "lps", "lps-scf", "pals"});
     pd::io::add_standard(opt, "reports/3d/jc_bar");
     for (const char* o : {"E", "A", "n", "length", "width", "thickness", "plastic-part", "strain", "m", "grip", "tol"})
         opt.require_positive(o);
@@ -181,7 +181,7 @@ static int run(int argc, char** argv)
     for (std::size_t i = 0; i < s.body.size(); ++i) plastic[i] = std::abs(s.body.x.c[0][i] - L / 2) <= plastic_part * L / 2;
 
     // 4.-5. Load steps per model.
-    std::vector<std::string> models{"correspondence", "lps", "pals"};
+    std::vector<std::string> models{"correspondence", "lps", "lps-scf", "pals"};
     if (which != "all") models = {which};
     std::vector<pd::io::SummaryRow> rows;
     pd::io::Checks check;
@@ -193,8 +193,9 @@ static int run(int argc, char** argv)
             pd::PlasticCorrespondence model({.material = mat, .C_hg = C_hg}, s.body, bonds, jc);
             model.pts.plastic = plastic;
             o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
-        } else if (name == "lps") {
+        } else if (name == "lps" || name == "lps-scf") {
             pd::PlasticLPS model({.material = mat, .dim = 3}, bonds, jc);
+            if (name == "lps-scf") model.lps.apply_shear_correction(s.body.x);  // Peridigm's SCF (models/scf.hpp)
             model.pts.plastic = plastic;
             o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
         } else {
