@@ -35,6 +35,20 @@ double kirchhoff_linear_steady(double k0, double beta, double T0, double L, doub
     return kirchhoff_linear_inverse(k0, beta, T0, Pa + (Pb - Pa) * x / L);  // Phi linear in x
 }
 
+double en1993_steel_k(double T)
+{
+    T = std::clamp(T, 20.0, 1200.0);
+    return T < 800 ? 54 - 3.33e-2 * T : 27.3;
+}
+
+double en1993_steel_phi(double T)
+{
+    auto lin = [](double t) { return 54 * (t - 20) - 1.665e-2 * (t * t - 400); };  // int_20^t (54 - 3.33e-2 s) ds
+    if (T < 20) return (54 - 3.33e-2 * 20) * (T - 20);  // clamped: k(20) below 20 C
+    if (T < 800) return lin(T);
+    return lin(800) + 27.3 * (T - 800);               // 27.3 from 800 C (and clamped above 1200 C)
+}
+
 namespace {
 
 double call_k(double T, void* p) { return (*static_cast<const Conductivity*>(p))(T); }

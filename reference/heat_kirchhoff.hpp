@@ -45,6 +45,12 @@ private:
     double L_, T_a_, T_b_, phi_b_;
 };
 
+// EN 1993-1-2 (2005) eq. (3.13), carbon-steel conductivity [W/(m K)] of T [C], clamped to its
+// range 20..1200 C: 54 - 3.33e-2 T below 800 C, 27.3 from 800 C; and its Kirchhoff potential in closed
+// form, Phi(T) = int_20^T k [W/m] (54 u - 1.665e-2 (T^2 - 400) on 20..800, then linear).
+double en1993_steel_k(double T);
+double en1993_steel_phi(double T);
+
 struct KBar1D {
     double L = 0.1;       // length [m]
     double rho_c = 0;     // volumetric heat capacity [J/(m^3 K)]

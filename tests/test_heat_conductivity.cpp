@@ -7,6 +7,7 @@
 #include "pd/heat/correspondence_heat.hpp"
 #include "pd/heat/heat_cvode.hpp"
 #include "pd/lattice.hpp"
+#include "reference/heat_1d.hpp"
 #include "reference/heat_kirchhoff.hpp"
 
 #include <gtest/gtest.h>
@@ -279,4 +280,20 @@ TEST(Conductivity, ImplicitExplicitAndCvodeAgreeOnATransient)
     opt.rtol = 1e-6, opt.atol = 1e-4;
     const std::vector<double> loose = pd::HeatCvode<Model>(heat, model, bar.bonds, theta0, 0, opt).advance(t_end);
     for (std::size_t i = 0; i < loose.size(); ++i) EXPECT_NEAR(loose[i], ref[i], 1e-3) << i;
+}
+
+TEST(Conductivity, ReferenceLawAndMethodOfLines)
+{
+    // The closed-form Phi of the EN 1993-1-2 law against GSL quadrature of its k (to 1e-13 relative;
+    // 1e-9 W/m on Phi ~ 3e4 W/m), on both branches and across the 800 C jump.
+    const pd::ref::KirchhoffBar q(pd::ref::en1993_steel_k, 1.0, 20, 1000);
+    for (double T : {100.0, 799.0, 800.0, 950.0}) EXPECT_NEAR(q.phi(T), pd::ref::en1993_steel_phi(T), 1e-9) << T;
+    // The method-of-lines reference with a constant k against the exact Fourier-series time of
+    // reference/heat_1d (spec T7: 74.163 s): second order in the cells, under 1e-4 at 400 cells.
+    const double k = 50, rho_c = 7800 * 502.08;
+    const pd::ref::KBar1D bar{0.1, rho_c, 0, 100, [=](double) { return k; }, [=](double T) { return k * T; }};
+    const double t = pd::ref::kbar_transient(bar, 400, 200, 1e-10, 50).t_cross;
+    const double exact = pd::ref::heat_bar_exact_time_to({0.1, k / rho_c, 0, 100}, 0.05, 50);
+    std::printf("MOL reference, constant k, 400 cells: t50 %.9f s, Fourier series %.9f s\n", t, exact);
+    EXPECT_NEAR(t, exact, 1e-4 * exact);
 }
