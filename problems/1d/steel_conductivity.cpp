@@ -145,20 +145,25 @@ int run(int argc, char** argv)
     const std::vector<int> Ns = quick ? std::vector<int>{25, 50, 100} : std::vector<int>{25, 50, 100, 200, 400};
     pd::io::ConvergenceTable st({}, {"flux_W_m2", "flux_rel_error", "picard"});
     Steady last{};
+    double first_error = 0;  // [K]
     for (int N : Ns) {
         last = steady(cs, N, ref);
+        if (N == Ns.front()) first_error = last.error;
         st.add({.dx_m = cs.l / N, .delta_m = cs.m * cs.l / N, .m = double(cs.m), .nodes = last.nodes, .bonds = last.bonds,
                 .error = last.error, .wall_s = last.wall_s, .extras = {last.flux, pd::io::relative_error(last.flux, ref.flux()), double(last.picard)}});
     }
     std::printf("\nsteady bar %g -> %g C: max |T - T_Kirchhoff| [K] and flux (Kirchhoff %.6g W/m^2)\n", cs.T_a, cs.T_b, ref.flux());
     st.print(std::cout);
     st.write_csv(out + "/steady_convergence.csv");
-    const double st_rate = st.rate(Ns.size() - 1);
-    check(st_rate > 1.5, "steady profile converges to Kirchhoff at least at order 1.5 (finest pair)");
+    // Mean order over the study: the law is linear below 800 C, where the bond rule (k_i + k_j)/2 is
+    // exact (round-off error); the error comes from the kink and the 0.06 W/(m K) jump of k at 800 C,
+    // which makes T' jump: O(delta) locally at a jump, O(delta^2) at a kink, so an order between 1 and 2.
+    const double st_rate = std::log(first_error / last.error) / std::log(double(Ns.back()) / Ns.front());
+    check(st_rate > 1.0, "steady profile converges to Kirchhoff at mean order > 1 (jump of k at 800 C)");
     check(pd::io::relative_error(last.flux, ref.flux()) < 1e-3, "steady heat flux within 1e-3 of Kirchhoff at the finest N");
     summary.push_back({"steady_flux", last.flux, ref.flux(), pd::io::relative_error(last.flux, ref.flux()), "W/m^2"});
     summary.push_back({"steady_max_error", last.error, NAN, NAN, "K"});
-    summary.push_back({"steady_rate", st_rate, 2, std::abs(st_rate - 2) / 2, "-"});
+    summary.push_back({"steady_mean_rate", st_rate, NAN, NAN, "-"});
 
     // 3. Transient t500 vs the method-of-lines reference (its error: 400 vs 800 cells).
     const pd::ref::KBar1D kb{cs.l, cs.rho_c, cs.T0, cs.T_end, pd::ref::en1993_steel_k, pd::ref::en1993_steel_phi};
@@ -204,10 +209,14 @@ int run(int argc, char** argv)
     std::vector<double> e_exp, e_imp, e_cv;
     for (double f : {0.9, 0.45}) e_exp.push_back(record(pd::HeatIntegrator::explicit_euler, f * dt_crit));
     for (double dt : {4.0, 2.0, 1.0}) e_imp.push_back(record(pd::HeatIntegrator::implicit_euler, dt));
-    for (double tol : {1e-4, 1e-6, 1e-8}) e_cv.push_back(record(pd::HeatIntegrator::cvode, tol));
+    const std::vector<double> rtols = {1e-4, 1e-6, 1e-8, 1e-9, 1e-10};
+    for (double tol : rtols) e_cv.push_back(record(pd::HeatIntegrator::cvode, tol));
     check(std::abs(e_imp[1] / e_imp[2] - 2) < 0.3, "implicit Euler (Picard) first order in dt (error ratio 2 +- 0.3)");
     check(std::abs(e_exp[0] / e_exp[1] - 2) < 0.3, "explicit Euler at 0.9 dt_crit(k_max) stable and first order (ratio 2 +- 0.3)");
-    check(e_cv[2] < 1e-6, "CVODE (frozen-k Jacobian) at rtol 1e-8 within 1e-6 of the time-converged t");
+    // CVODE controls the local error; the global error of the crossing time lies within 1..100 rtol.
+    bool cv_ok = true;
+    for (std::size_t i = 0; i < rtols.size(); ++i) cv_ok = cv_ok && e_cv[i] < 100 * rtols[i];
+    check(cv_ok, "CVODE (frozen-k Jacobian): error of t below 100 rtol at every rtol");
     summary.push_back({"t_target_implicit_dt1", t_conv * (1 + e_imp[2]), t_conv, e_imp[2], "s"});
     pd::io::write_summary(out + "/summary.csv", summary);
     std::printf("verdict: %s: steady rate %.2f, flux error %.2e; t500 PD %.4f s vs classical %.4f s (rate %.2f)\n",
