@@ -1,10 +1,11 @@
-// PD plasticity models (models/plastic_lps.hpp, models/plastic_correspondence.hpp) against the
+// PD plasticity models (models/plastic_lps.hpp, plastic_pals.hpp, plastic_correspondence.hpp) against the
 // classical radial return of laws/j2.hpp (itself verified against the V7 table and closed forms in
 // test_laws_plastic.cpp), spec/000b V7 identity test:
 //  - ordinary LPS J2: a node whose family is the 12 vertices of an icosahedron (a spherical
 //    5-design, so the 4th moments sum_k n n n n are isotropic and the PD deviatoric energy equals
 //    G dev(eps):dev(eps) for affine deformation) under a non-proportional affine history with a
-//    volumetric part: per step dl, ep and sigma_eff equal the classical return;
+//    volumetric part: per step dl, ep and sigma_eff equal the classical return; PALS: the same at
+//    the centre node of a lattice block (full family, cubic symmetry);
 //  - correspondence J2: interior nodes of a lattice block (full family, F exact for affine y)
 //    under uniaxial strain then shear reproduce the point law;
 //  - the history protocol: point_pass twice at one y gives the same force (no accumulation), and
@@ -15,6 +16,7 @@
 #include "pd/lattice.hpp"
 #include "pd/models/plastic_correspondence.hpp"
 #include "pd/models/plastic_lps.hpp"
+#include "pd/models/plastic_pals.hpp"
 
 #include <gtest/gtest.h>
 
@@ -63,15 +65,11 @@ Mat3 history_strain(int k)
 }
 }  // namespace
 
-TEST(PlasticLPS, IcosahedronNodeGivesTheClassicalReturn)
+// Non-proportional affine history at node c with a symmetric family: the PD return of `model`
+// against the classical one, step by step.
+template <class Model>
+void expect_classical_return(Model& model, const Body<3>& body, const Bonds& bonds, const laws::JohnsonCook& jc, std::size_t c = 0)
 {
-    const double r = 1e-3;
-    const Body<3> body = icosahedron(r);
-    const Bonds bonds = build_bonds(body, 1.02 * r);
-    ASSERT_EQ(bonds.end(0) - bonds.begin(0), 12);
-    // Small yield stress so that plasticity starts at strains ~1e-6 (G 27 GPa): A/(3G) = 6e-7.
-    const laws::JohnsonCook jc{.A = 5e4, .B = 1e8, .n = 0.71};
-    PlasticLPS model({.material = al, .dim = 3}, bonds, jc);
     const laws::IsotropicElastic el{al.K, al.G};
     laws::J2History h;
     Field<3> f;
@@ -83,15 +81,45 @@ TEST(PlasticLPS, IcosahedronNodeGivesTheClassicalReturn)
         // Tolerance: the PD extension |Y| - |xi| equals the linear n.eps.n |xi| only to O(eps)
         // (strains <= 1.4e-5; measured relative difference of sigma_eff <= 5e-7), which carries
         // into sigma_eff_trial and into dl (~1e-6).
-        EXPECT_NEAR(model.pts.sigma_eff[0], laws::von_mises(u.stress), 5e-6 * laws::von_mises(u.stress)) << "step " << k;
-        EXPECT_NEAR(model.pts.dlambda[0], u.scalar.dlambda, 5e-6 * 1e-6) << "step " << k;
-        EXPECT_NEAR(model.pts.ep[0], u.history.ep, 5e-6 * (1e-6 + u.history.ep)) << "step " << k;
+        EXPECT_NEAR(model.pts.sigma_eff[c], laws::von_mises(u.stress), 5e-6 * laws::von_mises(u.stress)) << "step " << k;
+        EXPECT_NEAR(model.pts.dlambda[c], u.scalar.dlambda, 5e-6 * 1e-6) << "step " << k;
+        EXPECT_NEAR(model.pts.ep[c], u.history.ep, 5e-6 * (1e-6 + u.history.ep)) << "step " << k;
         plastic_steps += u.scalar.plastic;
         model.commit();
         h = u.history;
     }
     EXPECT_GE(plastic_steps, 8);  // the history is mostly plastic, in both loading directions
     EXPECT_GT(h.ep, 5e-6);
+}
+
+// Small yield stress so that plasticity starts at strains ~1e-6 (G 27 GPa): A/(3G) = 6e-7.
+const laws::JohnsonCook tiny_yield{.A = 5e4, .B = 1e8, .n = 0.71};
+
+TEST(PlasticLPS, IcosahedronNodeGivesTheClassicalReturn)
+{
+    const double r = 1e-3;
+    const Body<3> body = icosahedron(r);
+    const Bonds bonds = build_bonds(body, 1.02 * r);
+    ASSERT_EQ(bonds.end(0) - bonds.begin(0), 12);
+    PlasticLPS model({.material = al, .dim = 3}, bonds, tiny_yield);
+    expect_classical_return(model, body, bonds, tiny_yield);
+}
+
+// PALS: the icosahedron is degenerate for PALS (the six matching functions take only three
+// distinct value sets on its 12 bonds, the systems are singular). Instead the centre node of a
+// lattice block with its full family: cubic symmetry leaves two deviatoric moduli (normal and
+// shear), both fixed by the matching constraints, so W_d = G dev(eps):dev(eps) and theta = tr eps
+// for every affine eps (linearised).
+TEST(PlasticPALS, FullLatticeFamilyGivesTheClassicalReturn)
+{
+    const double dx = 1e-3;
+    const Body<3> body = box<3>({{-3.5 * dx, -3.5 * dx, -3.5 * dx}}, {{3.5 * dx, 3.5 * dx, 3.5 * dx}}, dx);
+    const Bonds bonds = build_bonds(body, 3.05 * dx);
+    std::size_t c = 0;  // the centre node (0, 0, 0)
+    while (norm(Vec<3>{{body.x.c[0][c], body.x.c[1][c], body.x.c[2][c]}}) > 1e-9) ++c;
+    ASSERT_EQ(bonds.end(c) - bonds.begin(c), 122);  // the full family of delta = 3.05 dx
+    PlasticPALS model({.material = al}, body, bonds, tiny_yield);
+    expect_classical_return(model, body, bonds, tiny_yield, c);
 }
 
 TEST(PlasticLPS, TrialEvaluationDoesNotAccumulate)

@@ -13,6 +13,7 @@
 // (ThermalCorrection::pair_mean: (TCF_i + TCF_j)/2 on both ends).
 // Conductance per bond coef_k = kappa_1 TCF V_j / |xi| [W/(m^3 K)], so bond_heat = coef_k dtheta.
 // The volumes are the bond volumes of Bonds (partial volumes included).
+// k(theta): conductivity.hpp wraps a model built with k = 1 and scales each bond by its conductivity.
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/influence.hpp"
@@ -79,6 +80,9 @@ struct Agwai {
     }
 
     double bond_heat(std::size_t, std::int64_t k, int, double dtheta) const { return coef[k] * dtheta; }
+    // Conductivity of the bond s [W/(m K)] times the conductance of a model built with k = 1
+    // (temperature-dependent k, conductivity.hpp).
+    double bond_heat_scaled(std::size_t, std::int64_t k, int, double dtheta, double s) const { return s * coef[k] * dtheta; }
 };
 
 }  // namespace pd

@@ -12,6 +12,11 @@
 //                    heat operator of the model (Q = A theta); fixed rows are identity rows. The sparse LU
 //                    factorisation is kept while dt and rho c do not change; rho c(theta) is taken at
 //                    theta^n (lagged). Unconditionally stable.
+// A nonlinear model (Model::nonlinear, e.g. the temperature-dependent conductivity of
+// conductivity.hpp, Q = A(theta) theta) makes implicit_euler and steady_state iterate by Picard:
+// theta^(m+1) solves the linear system with A(theta^(m)), until max_i |theta^(m+1) - theta^(m)| <=
+// picard_tol max(1, max_i |theta^(m+1)|) (default 1e-10: with a contraction rate rho <= 1/2 the
+// distance to the fixed point is at most that change); std::runtime_error after picard_max_iter.
 // (CVODE BDF: heat/heat_cvode.hpp.)
 #pragma once
 #include "pd/bonds.hpp"
@@ -27,9 +32,14 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pd {
+
+// A heat model whose heat flow is not linear in theta (declares `static constexpr bool nonlinear`).
+template <class Model>
+concept NonlinearHeat = requires { Model::nonlinear; } && Model::nonlinear;
 
 struct HeatLoads {
     std::vector<double> source;        // s_i [W/m^3]; empty = none
@@ -97,6 +107,12 @@ public:
     double h(std::size_t i) const { return loads_.h.empty() ? 0.0 : loads_.h[i]; }
     bool held(std::size_t i) const { return held_[i]; }
     const HeatLoads& loads() const { return loads_; }
+    Model& model() { return model_; }
+    const Bonds& bonds() const { return bonds_; }
+
+    double picard_tol = 1e-10;    // relative change that ends the Picard iteration [-] (nonlinear models)
+    int picard_max_iter = 100;    // Picard iterations before giving up
+    int picard_iterations = 0;    // iterations of the last implicit step or steady solve
 
     // Sets the held temperatures.
     void apply_fixed(std::vector<double>& theta) const
@@ -125,6 +141,10 @@ public:
 
     void implicit_euler(std::vector<double>& theta, double dt)
     {
+        if constexpr (NonlinearHeat<Model>) {
+            implicit_euler_picard(theta, dt);
+            return;
+        }
         const std::size_t n = theta.size();
         std::vector<double> rc(n);
         for (std::size_t i = 0; i < n; ++i) rc[i] = rho_c(i, theta[i]);
@@ -146,6 +166,17 @@ public:
     // non-symmetric with the per-node thermal correction). Needs at least one held node or h > 0.
     // Returns the iterations; throws std::runtime_error when it does not converge.
     int steady_state(std::vector<double>& theta, double tol = 1e-12)
+    {
+        if constexpr (NonlinearHeat<Model>) {
+            int krylov = 0;
+            picard([&](std::vector<double>& next) { krylov += steady_linear(next, tol); }, theta, "steady state");
+            return krylov;
+        }
+        return steady_linear(theta, tol);
+    }
+
+private:
+    int steady_linear(std::vector<double>& theta, double tol)
     {
         const std::size_t n = theta.size();
         apply_fixed(theta);
@@ -172,7 +203,54 @@ public:
         return int(solver.iterations());
     }
 
-private:
+    // Picard iteration: solve(next) replaces next by the solution of the linear problem with the
+    // model's operator at next (the model's point pass evaluates k there).
+    template <class Solve>
+    void picard(Solve&& solve, std::vector<double>& theta, const char* what)
+    {
+        std::vector<double> next = theta;
+        double change = 0;
+        for (picard_iterations = 1; picard_iterations <= picard_max_iter; ++picard_iterations) {
+            model_.point_pass(bonds_, next);
+            const std::vector<double> previous = next;
+            solve(next);
+            change = 0;
+            double scale = 1;
+            for (std::size_t i = 0; i < next.size(); ++i)
+                change = std::max(change, std::abs(next[i] - previous[i])), scale = std::max(scale, std::abs(next[i]));
+            if (change <= picard_tol * scale) {
+                theta = next;
+                return;
+            }
+        }
+        throw std::runtime_error(std::string(what) + ": Picard iteration did not converge in " + std::to_string(picard_max_iter) +
+                                 " iterations (last change " + std::to_string(change) + ")");
+    }
+
+    // Implicit Euler of a nonlinear model: rho c lagged at theta^n, A(theta) iterated.
+    void implicit_euler_picard(std::vector<double>& theta, double dt)
+    {
+        const std::size_t n = theta.size();
+        apply_fixed(theta);
+        std::vector<double> diag(n);
+        for (std::size_t i = 0; i < n; ++i) diag[i] = rho_c(i, theta[i]) / dt;
+        Eigen::VectorXd rhs0(n), held_values = Eigen::VectorXd::Zero(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            rhs0[i] = held_[i] ? theta[i] : diag[i] * theta[i] + source(i) + h(i) * loads_.T_inf;
+            if (held_[i]) held_values[i] = theta[i];
+        }
+        picard(
+            [&](std::vector<double>& next) {
+                assemble(diag);
+                Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(M_);
+                if (lu.info() != Eigen::Success) throw std::runtime_error("implicit Euler: sparse LU failed");
+                const Eigen::VectorXd x = lu.solve(rhs0 + coupling_ * held_values);
+                if (lu.info() != Eigen::Success) throw std::runtime_error("implicit Euler: sparse solve failed");
+                for (std::size_t i = 0; i < n; ++i) next[i] = x[i];
+            },
+            theta, "implicit Euler");
+    }
+
     void factorise(double dt, const std::vector<double>& rc)
     {
         std::vector<double> diag(rc.size());

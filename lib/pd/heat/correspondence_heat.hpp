@@ -12,6 +12,7 @@
 //   with kappa_1 the Agwai micro-conductivity of the dimension (agwai.hpp). Exact for linear fields
 //   (g exact, hourglass term 0) at every node with an invertible K; Q = k lap(theta) in the interior
 //   for quadratic fields. The operator is linear in theta: add_operator() gives its matrix exactly.
+// k(theta): conductivity.hpp (node i's flux at k(theta_i), the suppression at the bond's k).
 // A node whose K is singular gets K^-1 = 0: no gradient, only the suppression term acts.
 #pragma once
 #include "pd/bonds.hpp"
@@ -77,27 +78,46 @@ struct CorrespondenceHeat {
 
     void point_pass(const Bonds& b, const std::vector<double>& theta)
     {
+        point_pass_scaled(b, theta, [](std::size_t) { return 1.0; });
+    }
+    double bond_heat(std::size_t i, std::int64_t k, int j, double dtheta) const { return bond_heat_scaled(i, k, j, dtheta, 1.0); }
+
+    // Temperature-dependent conductivity (conductivity.hpp): node i's flux uses par.k s_i, the
+    // suppression term of bond i-j the bond's factor s_ij (the caller's symmetric rule); s = 1 is
+    // the constant-k model (multiplications by 1.0 are exact and folded by the compiler).
+    template <class NodeScale>
+    void point_pass_scaled(const Bonds& b, const std::vector<double>& theta, const NodeScale& s)
+    {
         if (b.has_damage()) shape_tensors(b);
         parallel_for(b.nodes(), [&](std::size_t i) {
-            Col s = Col::Zero();
+            Col sum = Col::Zero();
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-                if (intact(b, k)) s += b.omega[k] * b.volume[k] * (theta[b.partner[k]] - theta[i]) * xi(i, b.partner[k]);
-            g[i] = Kinv[i] * s;
-            a[i] = Kinv[i] * (par.k * g[i]);
+                if (intact(b, k)) sum += b.omega[k] * b.volume[k] * (theta[b.partner[k]] - theta[i]) * xi(i, b.partner[k]);
+            g[i] = Kinv[i] * sum;
+            a[i] = Kinv[i] * ((par.k * s(i)) * g[i]);
         });
     }
 
-    double bond_heat(std::size_t i, std::int64_t k, int j, double dtheta) const
+    double bond_heat_scaled(std::size_t i, std::int64_t k, int j, double dtheta, double s_ij) const
     {
         const Col e = xi(i, j);
         const double V = bonds->volume[k];
         double h = bonds->omega[k] * V * (a[i] + a[j]).dot(e);
-        if (par.C_hg != 0) h += par.C_hg * kappa1 * V / bonds->length[k] * (2 * dtheta - (g[i] + g[j]).dot(e));
+        if (par.C_hg != 0) h += par.C_hg * kappa1 * s_ij * V / bonds->length[k] * (2 * dtheta - (g[i] + g[j]).dot(e));
         return h;
     }
 
     // Adds the exact matrix A (Q = A theta) of this linear operator to the triplets.
     void add_operator(const Bonds& b, std::vector<Eigen::Triplet<double>>& t) const
+    {
+        add_operator_scaled(b, t, [](std::size_t) { return 1.0; }, [](std::size_t, int) { return 1.0; });
+    }
+
+    // The same with node factors s(i) on the flux and bond factors s_bond(i, j) on the suppression
+    // (the operator at frozen conductivities, point_pass_scaled / bond_heat_scaled).
+    template <class NodeScale, class BondScale>
+    void add_operator_scaled(const Bonds& b, std::vector<Eigen::Triplet<double>>& t, const NodeScale& s,
+                             const BondScale& s_bond) const
     {
         // dg_i/dtheta_l = G_il = K_i^-1 omega xi_il V_l (l in family of i), dg_i/dtheta_i = -sum_l G_il.
         auto add_gradient = [&](std::size_t row, std::size_t node, const Col& c) {  // c . g_node
@@ -116,12 +136,12 @@ struct CorrespondenceHeat {
                 const int j = b.partner[k];
                 const Col e = xi(i, j);
                 const double V = b.volume[k];
-                // omega V (a_i + a_j) . xi, a = k K^-1 g
+                // omega V (a_i + a_j) . xi, a = k s K^-1 g
                 const Col w = b.omega[k] * V * par.k * e;
-                add_gradient(i, i, Kinv[i].transpose() * w);
-                add_gradient(i, j, Kinv[j].transpose() * w);
+                add_gradient(i, i, Kinv[i].transpose() * (s(i) * w));
+                add_gradient(i, j, Kinv[j].transpose() * (s(j) * w));
                 if (par.C_hg != 0) {
-                    const double c = par.C_hg * kappa1 * V / b.length[k];
+                    const double c = par.C_hg * kappa1 * s_bond(i, j) * V / b.length[k];
                     t.emplace_back(int(i), j, 2 * c);
                     t.emplace_back(int(i), int(i), -2 * c);
                     add_gradient(i, i, -c * e);

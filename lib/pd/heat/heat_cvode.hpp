@@ -3,6 +3,10 @@
 // 0 on held nodes; Jacobian (A - diag h) / rho c with A the model's linear heat operator
 // (exact for constant rho c, the lagged-rho-c approximation otherwise). Error control by CVODE's
 // tolerances instead of a fixed step.
+// A nonlinear model (k(theta), conductivity.hpp) gets the frozen-k operator A(theta) re-assembled at
+// each Jacobian evaluation: an approximate Jacobian (it omits the terms dk/dtheta (theta_j - theta_i)),
+// so CVODE's Newton iteration is a modified Newton one; its convergence test and error control are
+// unchanged, only the iteration count per step may grow.
 #pragma once
 #include "pd/heat/conduction.hpp"
 #include "pd/time/cvode_bdf.hpp"
@@ -29,6 +33,11 @@ public:
                 for (std::size_t i = 0; i < theta_.size(); ++i) ydot[i] = heat_.held(i) ? 0.0 : P_[i] / heat_.rho_c(i, y[i]);
             },
             [this](double, const double* y, CvodeBdf::SparseRowMajor& J) {
+                if constexpr (NonlinearHeat<Model>) {  // frozen-k operator at y
+                    theta_.assign(y, y + theta_.size());
+                    heat_.model().point_pass(heat_.bonds(), theta_);
+                    A_ = heat_operator(heat_.model(), heat_.bonds());
+                }
                 J = A_;  // row-major copy
                 for (int r = 0; r < J.outerSize(); ++r) {
                     const double scale = heat_.held(r) ? 0.0 : 1.0 / heat_.rho_c(r, y[r]);

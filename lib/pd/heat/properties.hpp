@@ -4,6 +4,10 @@
 //   piecewise   intervals [lo_b, hi_b) in increasing order, each with its own formula (any callable:
 //               polynomial, rational, ...); the last interval also contains its upper end hi
 //   table       points (theta_k, p_k), theta strictly increasing, linear interpolation between them
+// max_over(a, b) bounds p on [a, b] (used for the explicit critical step with k(theta)): exact for a
+// constant and a table (the values at a, b and the table points inside); for a piecewise property the
+// maximum of p at the branch ends inside [a, b] and at 1001 evenly spaced points (exact for branches
+// that are monotone, as the EN 1993-1-2 laws are; a sampled estimate otherwise).
 // Outside [lo, hi] a piecewise or table property either clamps (the value at the nearest end, the
 // default) or throws std::out_of_range (OutOfRange::error). A constant has no range.
 // The source writes these as run-time compiled strings; here they are C++ callables.
@@ -17,9 +21,16 @@
 //   c = 650                                                        900 <= theta <= 1200
 // (theta in C). Its peak c(735) = 5000 is the ferrite-austenite transition. Outside 20..1200 C it
 // clamps (c(20) = 439.80 below, 650 above) unless OutOfRange::error is asked for.
+//
+// en1993_carbon_steel_conductivity: EN 1993-1-2 (2005) sec. 3.4.1.3 eq. (3.13), thermal conductivity
+// lambda_a [W/(m K)] of carbon steel (not in the seeds or spec/000a, which give only c(theta)):
+//   lambda_a = 54 - 3.33e-2 theta     20 <= theta < 800
+//   lambda_a = 27.3                   800 <= theta <= 1200
+// (theta in C; the code's own jump at 800 C is 27.36 -> 27.3). Clamps outside 20..1200 C by default.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -79,6 +90,27 @@ public:
     double lo() const { return kind_ == Kind::piecewise ? branches_.front().lo : kind_ == Kind::table ? theta_.front() : -1e308; }
     double hi() const { return kind_ == Kind::piecewise ? branches_.back().hi : kind_ == Kind::table ? theta_.back() : 1e308; }
 
+    bool is_constant() const { return kind_ == Kind::constant; }
+
+    // Largest value on [a, b] (see the file header for when it is exact).
+    double max_over(double a, double b) const
+    {
+        if (a > b) std::swap(a, b);
+        const Property& p = *this;
+        double m = std::max(p(a), p(b));
+        if (kind_ == Kind::table)
+            for (double t : theta_)
+                if (t > a && t < b) m = std::max(m, p(t));
+        if (kind_ == Kind::piecewise) {
+            for (const Branch& br : branches_)
+                for (double t : {br.lo, std::nextafter(br.hi, br.lo)})
+                    if (t > a && t < b) m = std::max(m, p(t));
+            constexpr int samples = 1000;  // interior samples for non-monotone branches
+            for (int s = 1; s < samples; ++s) m = std::max(m, p(a + (b - a) * s / samples));
+        }
+        return m;
+    }
+
     double operator()(double theta) const
     {
         if (kind_ == Kind::constant) return value_;
@@ -122,6 +154,14 @@ inline Property en1993_carbon_steel_specific_heat(OutOfRange policy = OutOfRange
          {735, 900, [](double t) { return 545 + 17820 / (t - 731); }},  // falls from the peak
          {900, 1200, [](double) { return 650.0; }}},
         policy);
+}
+
+// EN 1993-1-2 carbon-steel thermal conductivity [W/(m K)] of theta [C], eq. (3.13); valid 20..1200 C.
+inline Property en1993_carbon_steel_conductivity(OutOfRange policy = OutOfRange::clamp)
+{
+    constexpr double a0 = 54, a1 = -3.33e-2, plateau = 27.3;  // [W/(m K)], [W/(m K^2)], [W/(m K)]
+    return Property::piecewise({{20, 800, [=](double t) { return a0 + a1 * t; }}, {800, 1200, [=](double) { return plateau; }}},
+                               policy);
 }
 
 }  // namespace pd

@@ -59,6 +59,7 @@ struct LPS {
     std::vector<double> p_coef;    // D kappa / m_i [Pa/m^5]
     std::vector<double> alpha;     // a_D G / m_i, times SCF_i when corrected [Pa/m^5]
     std::vector<double> theta;     // dilatation, updated by point_pass [-]
+    std::vector<double> a_coef;    // (p_coef - alpha / D) theta per node, updated by point_pass [Pa/m^5]
     std::vector<double> wV;        // omega V_j per bond (influence times partner volume) [m^3]
     const Bonds* bonds = nullptr;
     std::vector<double> scf;       // shear correction factor SCF_i [-]; empty when not applied
@@ -69,7 +70,8 @@ struct LPS {
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
         : dim(p.dim), kappa(kappa_dim(p.material, p.dim, p.plane)), G(p.material.G),
-          m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), wV(b.size()), bonds(&b),
+          m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), a_coef(b.nodes(), 0.0), wV(b.size()),
+          bonds(&b),
           weighted_volume(p.weighted_volume)
     {
         for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
@@ -119,6 +121,8 @@ struct LPS {
 
     // (t_i + t_j) V_j / |Y|: force on i is this times Y, with t = omega (D kappa theta |xi| / m
     // + alpha e_d) (4.11) regrouped as omega (|xi| (p theta - alpha theta / D) + alpha e).
+    // Reads theta, p_coef and alpha as they are; the bond loop uses kernel() instead (same value
+    // up to round-off).
     double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
     {
         const double L = bonds->length[k];
@@ -127,6 +131,27 @@ struct LPS {
         const double tij = L * (p_coef[i] * theta[i] + p_coef[j] * theta[j] - dev) + (alpha[i] + alpha[j]) * e;
         return tij * wV[k] / ylen;
     }
+
+    // Bond kernel of the bond loop (bond_loop.hpp, with_kernel): the same t_i + t_j as
+    // bond_scalar with the node terms precombined by point_pass, a = (p - alpha / D) theta:
+    //   t_i + t_j = |xi| (a_i + a_j) + (alpha_i + alpha_j) e.
+    // Per bond it gathers a_j and alpha_j (not p_j, theta_j, alpha_j) and has no division by D.
+    struct Kernel {
+        const double* length;  // |xi| per bond [m]
+        const double* wV;      // omega V_j per bond [m^3]
+        const double* a;       // a_coef per node [Pa/m^5]
+        const double* alpha;   // alpha per node [Pa/m^5]
+        double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
+        {
+            const double L = length[k];
+            const double tij = L * (a[i] + a[j]) + (alpha[i] + alpha[j]) * (ylen - L);
+            return tij * wV[k] / ylen;
+        }
+    };
+    // Valid after point_pass (a_coef of the current y, alpha of the current correction).
+    Kernel kernel() const { return {bonds->length.data(), wV.data(), a_coef.data(), alpha.data()}; }
+    template <class Pass>
+    void with_kernel(Pass&& pass) const { pass(kernel()); }
 
     // W_i (4.10) [J/m^3]; call after point_pass at the same y.
     template <int D>
@@ -195,7 +220,9 @@ private:
                 if constexpr (Damaged) s *= keep;
                 sum.s[0][l] += s;
             });
-            theta[i] = m[i] > 0 ? D * sum.total(0) / m[i] : 0.0;
+            const double th = m[i] > 0 ? D * sum.total(0) / m[i] : 0.0;
+            theta[i] = th;
+            a_coef[i] = (p_coef[i] - alpha[i] / dim) * th;
         });
     }
 };

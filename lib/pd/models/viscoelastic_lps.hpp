@@ -53,6 +53,7 @@ struct ViscoelasticLPS {
         : lps(p.lps, b), gamma_b(p.gamma_b), tau_b(p.tau_b), ed_c(b.size(), 0.0), edb_c(b.size(), 0.0), ed_t(b.size(), 0.0),
           edb_t(b.size(), 0.0), tv(b.size(), 0.0), dissipation(b.nodes(), 0.0)
     {
+        if (p.lps.dim < 2) throw std::invalid_argument("ViscoelasticLPS: 1D LPS has no deviatoric part (alpha = 0)");
         if (!(p.gamma_b >= 0)) throw std::invalid_argument("ViscoelasticLPS: gamma_b must be >= 0");
         if (!(p.tau_b > 0)) throw std::invalid_argument("ViscoelasticLPS: tau_b must be positive");
         if (b.reverse.size() != b.size()) throw std::invalid_argument("ViscoelasticLPS: bonds need the reverse-bond index");

@@ -1,0 +1,119 @@
+// Temperature-dependent conductivity k(theta) for the heat models (tracker issue 4; spec/000a
+// sec. 3.9 for temperature-dependent properties). ConductivityOfTheta<Model> wraps a heat model built
+// with unit conductivity (k = 1 W/(m K)) and scales it by k(theta) [W/(m K)], a Property
+// (properties.hpp: constant, piecewise or table):
+//   Agwai (bond-based)   q_ij = k_ij kappa_1(k=1) (theta_j - theta_i)/|xi|,
+//                        k_ij = (k(theta_i) + k(theta_j)) / 2   (the mean of the end conductivities:
+//                        symmetric in i, j, so the heat leaving i through the bond enters j and the
+//                        total heat is conserved; one k evaluation per node and step, not per bond;
+//                        it differs from k((theta_i + theta_j)/2) by O(k'' dtheta^2), second order
+//                        like the model itself).
+//   correspondence       q_i = k(theta_i) g_i (Fourier's law at the node's temperature), the
+//                        suppression term of bond i-j with the same k_ij as Agwai.
+// Q(theta) = A(s(theta)) theta with A the linear operator at frozen node factors s_i = k(theta_i):
+// the implicit integrators iterate on it (Picard, conduction.hpp), CVODE uses it as its approximate
+// Jacobian (heat_cvode.hpp). A constant k never goes through this wrapper: with_conductivity()
+// builds the plain model then, so constant-k scenes keep their code path and results bit for bit.
+// Explicit Euler: thermal_critical_step_k() bounds the step with the largest k over a temperature
+// range (by the maximum principle, [min, max] of the initial and held temperatures when there is no
+// source), Property::max_over.
+#pragma once
+#include "pd/bonds.hpp"
+#include "pd/heat/conduction.hpp"
+#include "pd/heat/properties.hpp"
+#include "pd/parallel.hpp"
+
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+namespace pd {
+
+template <class Model>
+struct ConductivityOfTheta {
+    static constexpr bool has_point_pass = true;
+    static constexpr bool nonlinear = true;  // Q is not linear in theta: implicit schemes iterate
+    using Params = typename Model::Params;
+
+    Model base;              // the model at k = 1 W/(m K)
+    Property k;              // k(theta) [W/(m K)]
+    std::vector<double> s;   // k(theta_i) at the last point pass [W/(m K)]
+
+    // params: the model's parameters (its k is ignored and set to 1).
+    template <int D>
+    ConductivityOfTheta(typename Model::Params params, Property k_of_theta, const Body<D>& body, const Bonds& b)
+        : base(unit(params), body, b), k(std::move(k_of_theta)), s(b.nodes(), 0.0)
+    {
+    }
+
+    void point_pass(const Bonds& b, const std::vector<double>& theta)
+    {
+        parallel_for(b.nodes(), [&](std::size_t i) { s[i] = k(theta[i]); });
+        if constexpr (Model::has_point_pass) base.point_pass_scaled(b, theta, [this](std::size_t i) { return s[i]; });
+    }
+    double bond_heat(std::size_t i, std::int64_t kb, int j, double dtheta) const
+    {
+        return base.bond_heat_scaled(i, kb, j, dtheta, 0.5 * (s[i] + s[j]));  // symmetric bond rule
+    }
+
+    // The linear operator at the conductivities of the last point pass (Q = A theta exactly there).
+    void add_operator(const Bonds& b, std::vector<Eigen::Triplet<double>>& t) const
+    {
+        auto s_bond = [this](std::size_t i, int j) { return 0.5 * (s[i] + s[j]); };
+        if constexpr (requires { base.add_operator_scaled(b, t, [](std::size_t) { return 1.0; }, s_bond); }) {
+            base.add_operator_scaled(b, t, [this](std::size_t i) { return s[i]; }, s_bond);
+        } else {
+            for (std::size_t i = 0; i < b.nodes(); ++i) {
+                double diag = 0;
+                for (std::int64_t kb = b.begin(i); kb < b.end(i); ++kb) {
+                    if (b.has_damage() && !b.intact[kb]) continue;
+                    const double c = s_bond(i, b.partner[kb]) * base.coef[kb];
+                    t.emplace_back(int(i), b.partner[kb], c);
+                    diag -= c;
+                }
+                t.emplace_back(int(i), int(i), diag);
+            }
+        }
+    }
+
+private:
+    static typename Model::Params unit(typename Model::Params p)
+    {
+        p.k = 1;
+        return p;
+    }
+};
+
+// Calls f(model) with the plain model when k is constant (k(theta) = k(0) everywhere) and with
+// ConductivityOfTheta<Model> otherwise: the choice is made once, outside every loop.
+template <class Model, int D, class F>
+decltype(auto) with_conductivity(typename Model::Params params, const Property& k, const Body<D>& body, const Bonds& b, F&& f)
+{
+    if (k.is_constant()) {
+        params.k = k(0.0);
+        Model m(params, body, b);
+        return f(m);
+    }
+    ConductivityOfTheta<Model> m(params, k, body, b);
+    return f(m);
+}
+
+// Explicit-Euler critical step [s] with k(theta) <= k_max on [theta_lo, theta_hi]: the Gershgorin
+// bound of the operator with every conductivity set to k_max (thermal_critical_step), so it holds for
+// any field with temperatures in that range. For a plain model it is thermal_critical_step.
+template <class Model>
+double thermal_critical_step_k(const Model& model, const Bonds& b, const Conduction<Model>& c,
+                               const std::vector<double>& theta, double theta_lo, double theta_hi)
+{
+    if constexpr (requires { model.k.max_over(theta_lo, theta_hi); }) {
+        Model bound = model;
+        std::fill(bound.s.begin(), bound.s.end(), model.k.max_over(theta_lo, theta_hi));
+        return thermal_critical_step(bound, b, c, theta);
+    } else {
+        return thermal_critical_step(model, b, c, theta);
+    }
+}
+
+}  // namespace pd

@@ -1,0 +1,96 @@
+// pd/models/plastic_pals.hpp -- PALS J2 / Johnson-Cook plasticity with radial return (Biondani
+// 2018 sec. 5.3.2; spec/000b sec. 2.6), composed with models/pals.hpp (public members only:
+// point_pass, theta, K, G, w_i = omega_i V_j, s_i = 2 G sigma_i V_j). Per node i, from the committed
+// plastic back extension e_dp per bond and ep_i:
+//   e_de = e - theta_i |xi|/3 - e_dp,  W_d = G (sigma_i e_de)•e_de,  sigma_eff_trial = sqrt(6 G W_d)  (5.53)-(5.55)
+//   scalar return (laws/j2.hpp, eq. 5.48), scale = sigma_y / sigma_eff_trial
+//   t_d  = 2 G sigma_i e_de scale                                                (5.59)-(5.63)
+//   e_dp += (3/(2 sigma_y)) (t_d/sigma_i) dl = 3 G dl e_de / sigma_eff_trial      (5.58), with sigma_i
+//   t    = (K theta_i - (2G/3)(sigma_i x)•e_de_np1) omega_i |xi| + t_d,  e_de_np1 = e_de scale   (4.21)
+// This avoids both problems of the fork's jc_pals.cxx (spec/000b sec. 2.6 [CODE]): the flow uses
+// the deviatoric influence state sigma_i (not omega_i), and the isotropic part uses e_de after the
+// update (the plastic extension enters (sigma x)•e_de). Elastic (e_dp = 0, no flow): identical to
+// models/pals.hpp. A negative W_d (possible where sigma_i < 0 on some bonds) is clamped at 0.
+// Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y|; t_j<-xi> is read from the twin bond.
+// 3D, undamaged scenes only. History protocol: plastic_points.hpp.
+#pragma once
+#include "pd/bond_loop.hpp"
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
+#include "pd/models/pals.hpp"
+#include "pd/models/plastic_points.hpp"
+#include "pd/parallel.hpp"
+#include "pd/time/stiffness_bound.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+struct PlasticPALS {
+    static constexpr bool has_point_pass = true;
+    PALS pals;
+    PlasticPoints pts;
+    std::vector<double> edp_c, edp;  // committed and trial plastic back extension per bond [m]
+    std::vector<double> t;           // trial force state t_i<xi> per bond [N/m^6]
+    const Bonds* bonds = nullptr;
+
+    // body and bonds must outlive the model (as PALS).
+    PlasticPALS(const PALS::Params& p, const Body<3>& body, const Bonds& b, const laws::JohnsonCook& law, double beta_TQ = 0.9)
+        : pals(p, body, b), pts(law, beta_TQ, b.nodes()), edp_c(b.size(), 0.0), edp(b.size(), 0.0), t(b.size(), 0.0), bonds(&b)
+    {
+    }
+
+    void set_time_step(double dt) { pts.set_time_step(dt); }
+    void commit()
+    {
+        edp_c = edp;
+        pts.commit();
+    }
+
+    // Trial state at y from the committed history (header).
+    void point_pass(const Bonds& b, const Field<3>& y)
+    {
+        if (b.has_damage()) throw std::invalid_argument("PlasticPALS: damaged scenes are not supported");
+        pals.point_pass(b, y);
+        const double G = pals.G;
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            const double th = pals.theta[i] / 3;
+            auto e_de = [&](std::int64_t k) {
+                const int j = b.partner[k];
+                double Y2 = 0;
+                for (int d = 0; d < 3; ++d) { const double Yd = y.c[d][j] - y.c[d][i]; Y2 += Yd * Yd; }
+                return std::sqrt(Y2) - b.length[k] * (1 + th) - edp_c[k];
+            };
+            double wd = 0, sx = 0;  // 2 W_d = sum 2G sigma e_de^2 V [Pa]; sum 2G sigma |xi| e_de V [Pa]
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                const double e = e_de(k);
+                wd += pals.s_i[k] * e * e;
+                sx += pals.s_i[k] * b.length[k] * e;
+            }
+            const double trial = std::sqrt(6 * G * 0.5 * std::max(wd, 0.0));  // sqrt(6 G W_d) (5.55)
+            const laws::ScalarReturn r = pts.scalar_return(i, G, trial);
+            const double scale = r.plastic ? r.sigma_eff / trial : 1.0;
+            const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;   // (5.58)
+            const double P = pals.K * pals.theta[i] - scale * sx / 3;            // K theta - (2G/3)(sigma x)•e_de_np1
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                const double e = e_de(k);
+                t[k] = (P * pals.w_i[k] * b.length[k] + scale * pals.s_i[k] * e) / b.volume[k];  // (4.21)
+                edp[k] = edp_c[k] + flow * e;
+            }
+        });
+    }
+
+    // (t_i<xi> + t_j<-xi>) V_j / |Y|.
+    double bond_scalar(std::size_t, std::int64_t k, int, double ylen) const
+    {
+        return (t[k] + t[bonds->reverse[k]]) * bonds->volume[k] / ylen;
+    }
+};
+
+// ADR density: the elastic PALS bound.
+inline Field<3> stiffness_bound(const PlasticPALS& model, const Bonds& b, const Field<3>& x) { return stiffness_bound(model.pals, b, x); }
+
+}  // namespace pd
