@@ -129,13 +129,13 @@ int run(int argc, char** argv)
     opt.require_at_least("m", 1);
     opt.require_at_least("N", 0);
     opt.parse(argc, argv);
+    if (!(std::min(opt.get("T0"), opt.get("T-end")) < opt.get("T-target") && opt.get("T-target") < std::max(opt.get("T0"), opt.get("T-end"))))
+        throw std::invalid_argument("option --T-target must lie strictly between --T0 and --T-end");
     opt.echo(std::cout);
     const std::string out = opt.get_string("out");
     opt.save_csv(out + "/params.csv");
     const Case cs{opt.get("length"), opt.get("area"), opt.get("rho") * opt.get("c"), opt.get("T-a"), opt.get("T-b"),
                   opt.get("T0"), opt.get("T-end"), opt.get("T-target"), opt.get_int("m")};
-    if (!(std::min(cs.T0, cs.T_end) < cs.T_target && cs.T_target < std::max(cs.T0, cs.T_end)))
-        throw std::invalid_argument("option --T-target must lie strictly between --T0 and --T-end");
     const bool quick = opt.get_flag("quick");
     pd::io::Checks check;
     std::vector<pd::io::SummaryRow> summary;
