@@ -39,7 +39,7 @@ struct ConductivityOfTheta {
 
     Model base;              // the model at k = 1 W/(m K)
     Property k;              // k(theta) [W/(m K)]
-    std::vector<double> s;   // k(theta_i) at the last point pass [W/(m K)]
+    std::vector<double> s;   // k(theta_i) at the last point pass [W/(m K)]; 0 before the first one
 
     // params: the model's parameters (its k is ignored and set to 1).
     template <int D>
