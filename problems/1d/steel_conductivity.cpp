@@ -90,7 +90,8 @@ Steady steady(const Case& cs, int N, const pd::ref::KirchhoffBar& ref)
 }
 
 // (b), (c) Time for the centre to reach T_target (step: dt for Euler, rtol for CVODE; dt_crit out).
-pd::ReachResult t_cross(const Case& cs, int N, pd::HeatIntegrator scheme, double step, double* dt_crit = nullptr)
+pd::ReachResult t_cross(const Case& cs, int N, pd::HeatIntegrator scheme, double step, double* dt_crit = nullptr,
+                        long* picard = nullptr)
 {
     Bar bar(cs, N);
     pd::HeatLoads loads;
@@ -104,6 +105,7 @@ pd::ReachResult t_cross(const Case& cs, int N, pd::HeatIntegrator scheme, double
     pd::CvodeOptions opt;
     opt.rtol = step, opt.atol = step * std::abs(cs.T_end);
     const auto r = pd::time_to_reach(heat, bar.model, bar.bonds, theta0, scheme, step, opt, 1e5, centre, cs.T_target);
+    if (picard) *picard = heat.picard_total;  // Picard iterations of implicit Euler (one sparse LU each)
     if (!r.reached) throw std::runtime_error("the centre did not reach --T-target within 1e5 s");
     return r;
 }
@@ -129,13 +131,13 @@ int run(int argc, char** argv)
     opt.require_at_least("m", 1);
     opt.require_at_least("N", 0);
     opt.parse(argc, argv);
+    if (!(std::min(opt.get("T0"), opt.get("T-end")) < opt.get("T-target") && opt.get("T-target") < std::max(opt.get("T0"), opt.get("T-end"))))
+        throw std::invalid_argument("option --T-target must lie strictly between --T0 and --T-end");
     opt.echo(std::cout);
     const std::string out = opt.get_string("out");
     opt.save_csv(out + "/params.csv");
     const Case cs{opt.get("length"), opt.get("area"), opt.get("rho") * opt.get("c"), opt.get("T-a"), opt.get("T-b"),
                   opt.get("T0"), opt.get("T-end"), opt.get("T-target"), opt.get_int("m")};
-    if (!(std::min(cs.T0, cs.T_end) < cs.T_target && cs.T_target < std::max(cs.T0, cs.T_end)))
-        throw std::invalid_argument("option --T-target must lie strictly between --T0 and --T-end");
     const bool quick = opt.get_flag("quick");
     pd::io::Checks check;
     std::vector<pd::io::SummaryRow> summary;
@@ -196,14 +198,16 @@ int run(int argc, char** argv)
     double dt_crit = 0;
     const double t_conv = t_cross(cs, Nw, pd::HeatIntegrator::cvode, 1e-11, &dt_crit).t;
     std::printf("\nwork-precision, N = %d (critical step at k_max %.4g s, time-converged t %.9f s):\n", Nw, dt_crit, t_conv);
-    pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t_s"});
+    pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t_s", "picard_per_step"});
     auto record = [&](pd::HeatIntegrator s, double step) {
-        const auto r = t_cross(cs, Nw, s, step);
+        long picard = 0;
+        const auto r = t_cross(cs, Nw, s, step, nullptr, &picard);
         const bool cv = s == pd::HeatIntegrator::cvode;
         const double err = std::abs(r.t - t_conv) / t_conv, dt = cv ? r.t / r.steps : step;
-        wp.row({pd::name(s), dt, cv ? step : NAN, err, r.wall_s, r.steps, r.t});
-        std::printf("  %-8s dt %-10.4g rtol %-8.1e error %-10.3e wall %.4f s, %ld steps\n", pd::name(s), dt, cv ? step : NAN, err,
-                    r.wall_s, r.steps);
+        const double per_step = s == pd::HeatIntegrator::implicit_euler ? double(picard) / r.steps : NAN;
+        wp.row({pd::name(s), dt, cv ? step : NAN, err, r.wall_s, r.steps, r.t, per_step});
+        std::printf("  %-8s dt %-10.4g rtol %-8.1e error %-10.3e wall %.4f s, %ld steps, Picard/step %.2f\n", pd::name(s), dt,
+                    cv ? step : NAN, err, r.wall_s, r.steps, per_step);
         return err;
     };
     std::vector<double> e_exp, e_imp, e_cv;

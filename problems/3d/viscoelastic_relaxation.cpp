@@ -23,7 +23,10 @@
 #include "pd/io/timer.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"
 #include "pd/models/viscoelastic_lps.hpp"
+#include "reference/lps_shear.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -41,26 +44,17 @@ pd::Field<3> sheared(const pd::Body<3>& body, double gamma)
     return y;
 }
 
-// Hand sums at node i under the shear gamma (4.8-4.9, 4.13): alpha = 15 G/m [Pa/m^5], theta [-],
-// and e_d of bond k [m]; positions from the affine map (no field needed).
+// alpha, theta and e_d of bond k of node i under the shear gamma, from the hand-written family sums
+// of reference/lps_shear.hpp (its own neighbour search, not pd::Bonds).
 struct HandLPS {
     double alpha = 0, theta = 0, ed = 0;
 };
-HandLPS hand_lps(const pd::Body<3>& body, const pd::Bonds& b, std::size_t i, std::int64_t kc, double gamma, double G)
+using Points = std::vector<std::array<double, 3>>;
+HandLPS hand_lps(const Points& pts, const pd::Body<3>& body, const pd::Bonds& b, std::size_t i, std::int64_t k, double gamma, double G)
 {
-    auto e = [&](std::int64_t k) {  // |Y| - |xi| of bond k
-        const int j = b.partner[k];
-        const double X = body.x.c[0][j] - body.x.c[0][i], Y = body.x.c[1][j] - body.x.c[1][i], Z = body.x.c[2][j] - body.x.c[2][i];
-        return std::sqrt(std::pow(X + 0.5 * gamma * Y, 2) + std::pow(Y + 0.5 * gamma * X, 2) + Z * Z) - b.length[k];
-    };
-    double m = 0, s = 0;
-    for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-        const double L = b.length[k];
-        m += b.omega[k] * L * L * b.volume[k];
-        s += b.omega[k] * L * e(k) * b.volume[k];
-    }
-    const double theta = 3 * s / m;
-    return {15 * G / m, theta, e(kc) - theta * b.length[kc] / 3};
+    const auto f = pd::ref::lps_shear_family(pts, body.volume, static_cast<int>(i), b.delta, G, gamma);
+    const auto at = std::find(f.partner.begin(), f.partner.end(), b.partner[k]) - f.partner.begin();
+    return {f.alpha, f.theta, f.ed.at(at)};
 }
 
 struct Histories {
@@ -112,10 +106,12 @@ int run(int argc, char** argv)
         if (std::abs(body.x.c[0][i] - 0.5 * n * dx) + std::abs(body.x.c[1][i] - 0.5 * n * dx) + std::abs(body.x.c[2][i] - 0.5 * n * dx) <
             std::abs(body.x.c[0][c] - 0.5 * n * dx) + std::abs(body.x.c[1][c] - 0.5 * n * dx) + std::abs(body.x.c[2][c] - 0.5 * n * dx))
             c = i;
+    Points pts(body.size());
+    for (std::size_t i = 0; i < body.size(); ++i) pts[i] = {body.x.c[0][i], body.x.c[1][i], body.x.c[2][i]};
     std::int64_t kc = bonds.begin(c);
     for (std::int64_t k = bonds.begin(c); k < bonds.end(c); ++k)
-        if (std::abs(hand_lps(body, bonds, c, k, g0, G).ed) > std::abs(hand_lps(body, bonds, c, kc, g0, G).ed)) kc = k;
-    const HandLPS hl = hand_lps(body, bonds, c, kc, g0, G);
+        if (std::abs(hand_lps(pts, body, bonds, c, k, g0, G).ed) > std::abs(hand_lps(pts, body, bonds, c, kc, g0, G).ed)) kc = k;
+    const HandLPS hl = hand_lps(pts, body, bonds, c, kc, g0, G);
     std::printf("cube %d^3 nodes, %zu bonds; centre node %zu (%zu bonds), measured bond |xi| = %.3g m\n", n, bonds.size(), c,
                 static_cast<std::size_t>(bonds.end(c) - bonds.begin(c)), bonds.length[kc]);
 
@@ -145,7 +141,7 @@ int run(int argc, char** argv)
             lps.commit(), corr.commit();
             // References: the elastic value x(t) plus the branch gamma_b (x - h).
             const double omega = bonds.omega[kc], ed_full = hl.ed;
-            auto ed_at = [&](double tt) { return hand_lps(body, bonds, c, kc, is_ramp ? g0 * std::min(tt / t1, 1.0) : g0, G).ed; };
+            auto ed_at = [&](double tt) { return hand_lps(pts, body, bonds, c, kc, is_ramp ? g0 * std::min(tt / t1, 1.0) : g0, G).ed; };
             if (is_ramp && s > 0)
                 for (int q = 0; q < substeps; ++q) {  // RK4 on (7.24) over [t - dt, t]
                     const double ta = t - dt + q * dt / substeps, hs = dt / substeps;

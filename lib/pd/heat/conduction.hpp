@@ -113,6 +113,7 @@ public:
     double picard_tol = 1e-10;    // relative change that ends the Picard iteration [-] (nonlinear models)
     int picard_max_iter = 100;    // Picard iterations before giving up
     int picard_iterations = 0;    // iterations of the last implicit step or steady solve
+    long picard_total = 0;        // iterations of all implicit steps and steady solves so far
 
     // Sets the held temperatures.
     void apply_fixed(std::vector<double>& theta) const
@@ -219,6 +220,7 @@ private:
             for (std::size_t i = 0; i < next.size(); ++i)
                 change = std::max(change, std::abs(next[i] - previous[i])), scale = std::max(scale, std::abs(next[i]));
             if (change <= picard_tol * scale) {
+                picard_total += picard_iterations;
                 theta = next;
                 return;
             }

@@ -39,7 +39,7 @@ struct ConductivityOfTheta {
 
     Model base;              // the model at k = 1 W/(m K)
     Property k;              // k(theta) [W/(m K)]
-    std::vector<double> s;   // k(theta_i) at the last point pass [W/(m K)]
+    std::vector<double> s;   // k(theta_i) at the last point pass [W/(m K)]; 0 before the first one
 
     // params: the model's parameters (its k is ignored and set to 1).
     template <int D>
@@ -101,8 +101,11 @@ decltype(auto) with_conductivity(typename Model::Params params, const Property& 
 }
 
 // Explicit-Euler critical step [s] with k(theta) <= k_max on [theta_lo, theta_hi]: the Gershgorin
-// bound of the operator with every conductivity set to k_max (thermal_critical_step), so it holds for
-// any field with temperatures in that range. For a plain model it is thermal_critical_step.
+// bound of the operator with every conductivity set to k_max (thermal_critical_step). For Agwai every
+// entry of the operator grows with the conductivities, so the bound holds for any field in that range;
+// for correspondence heat it is the bound of the k_max operator (an estimate for mixed conductivities).
+// For a plain model it is thermal_critical_step. (thermal_critical_step on the wrapper itself uses the
+// conductivities of the last point pass: the step re-evaluated at the current field.)
 template <class Model>
 double thermal_critical_step_k(const Model& model, const Bonds& b, const Conduction<Model>& c,
                                const std::vector<double>& theta, double theta_lo, double theta_hi)

@@ -11,10 +11,10 @@
 //   The internal-stress form of the source, q_i = E_i h_i with forcing gamma_i s_0 (7.13, 7.19),
 //   is this update times E_i: q^{n+1} = e q^n + (1 - e) E_i x^n + beta E_i dx.
 //   Dissipated energy of the step, exact for x linear in the step: with r = x - h, c = dx/dt and
-//   s = t/tau, r(s) = r_n e^{-s} + c tau (1 - e^{-s}), so
+//   s = t/tau, r(s) = r_n e^{-s} + c tau (1 - e^{-s}), so, with a = dt/tau,
 //     D_step = (E/tau) int r^2 dt = E [ r_n^2 g2 + r_n c tau g1^2 + (c tau)^2 g3 ],
-//     g1 = 1 - e^{-x}, g2 = (1 - e^{-2x})/2, g3 = int_0^x (1 - e^{-s})^2 ds, x = dt/tau
-//   (g3 by its Taylor series below x = 0.1, where the closed form x - 2 g1 + g2 cancels).
+//     g1 = 1 - e^{-a}, g2 = (1 - e^{-2a})/2, g3 = int_0^a (1 - e^{-s})^2 ds
+//   (g3 by its Taylor series below a = 0.1, where the closed form a - 2 g1 + g2 cancels).
 // One template serves a scalar x (1D bar, or a per-bond extension with E = alpha omega V) and a
 // deviatoric tensor x = e (Eigen 3x3, "E" then being 2 G_i so that the branch stress is 2 G_i (e - h)).
 // Products of tensors are the full contraction A:B.
@@ -51,7 +51,7 @@ inline MaxwellCoefficients maxwell_coefficients(double dt, double tau)
     return c;
 }
 
-// g3(x) = int_0^x (1 - e^{-s})^2 ds [-] (header).
+// g3(a) = int_0^a (1 - e^{-s})^2 ds [-] (header), a = dt/tau passed as x.
 inline double maxwell_g3(double x)
 {
     if (x >= 0.1) return x + 2 * std::expm1(-x) - 0.5 * std::expm1(-2 * x);  // x - 2 g1 + g2
