@@ -1,7 +1,8 @@
 // bench/pd_bench.cpp -- bond throughput of THE bond loop (bond_loop.hpp) on a 3D simple-cubic box.
 // Scene: N x N x N nodes, spacing dx, horizon delta = m dx, influence 1, no partial volumes, no
 // bond breaking; steel-like E = 200 GPa, nu = 1/4, rho = 7850 kg/m^3; PMB (continuum micromodulus), LPS,
-// or correspondence (linear law, Littlewood hourglass control C_hg = 0.02 as in model_cost_3d).
+// PALS (default base functions), or correspondence (linear law, Littlewood hourglass control
+// C_hg = 0.02 as in model_cost_3d).
 // Initial state: isotropic stretch 1e-4 plus a smooth wave, so every bond carries a force.
 // Timed (steady_clock, after one untimed warm-up):
 //   --what step (default): S velocity-Verlet steps of pd::Explicit::step at 0.5 x the
@@ -13,7 +14,7 @@
 // --checksum prints a hash of the bits of u, v and f to stderr (to compare separate runs).
 // --damage switches the bond-damage bookkeeping on (every bond intact), i.e. times the loop
 // variant of damaged scenes.
-// Run: pd_bench --model pmb|lps|correspondence --n N --m 3 --steps S --threads T [--what step|force] [--repeat R]
+// Run: pd_bench --model pmb|lps|pals|correspondence --n N --m 3 --steps S --threads T [--what step|force] [--repeat R]
 //      [--verify] [--checksum] [--damage]
 // Writes: CSV header (unless --no-header) and one line
 //   model,nodes,bonds,steps,threads,wall_s,bond_updates_per_s
@@ -24,6 +25,7 @@
 #include "pd/lattice.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
+#include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/parallel.hpp"
 #include "pd/time/critical_step.hpp"
@@ -143,7 +145,7 @@ int main(int argc, char** argv)
 {
     // 1. Options.
     pd::io::Options opt("pd_bench", "Bond throughput of the bond loop on an N^3 simple-cubic box.");
-    std::string& model_name = opt.add_string("model", "pmb", "material model", {"pmb", "lps", "correspondence"});
+    std::string& model_name = opt.add_string("model", "pmb", "material model", {"pmb", "lps", "pals", "correspondence"});
     int& n = opt.add_int("n", 20, "nodes per side of the cube");
     int& m = opt.add_int("m", 3, "horizon ratio delta/dx");
     int& steps = opt.add_int("steps", 100, "timed steps (force evaluations for --what force)");
@@ -175,6 +177,10 @@ int main(int argc, char** argv)
         if (model_name == "correspondence") {
             using C = pd::Correspondence<3>;
             C model(C::Params{.material = material, .law = C::Law::linear, .C_hg = C_hg}, s.body, s.bonds);
+            return bench(model, t);
+        }
+        if (model_name == "pals") {
+            pd::PALS model(pd::PALS::Params{.material = material}, s.body, s.bonds);
             return bench(model, t);
         }
         pd::LPS model(pd::LPS::Params{.material = material}, s.bonds);

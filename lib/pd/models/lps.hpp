@@ -29,6 +29,10 @@
 // alpha_i = SCF_i a_D G / m_i with SCF_i from models/scf.hpp (Peridigm's probe); W and the force
 // both use alpha_i, so the force stays the gradient of W. Without it (the default) every member
 // and result is exactly as before; with SCF_i = 1 the forces are bit-identical to no correction.
+// Cost (issue 3; reports/3d/model_cost.md): internal_force uses Kernel (with_kernel), which reads
+// a_j = (p_j - alpha_j / D) theta_j and alpha_j precombined by point_pass instead of p_j, theta_j,
+// alpha_j, with no division by D per bond (about 2.07x PMB per step, was 2.20x); bond_scalar still
+// reads theta, p_coef and alpha, for callers that edit them between the passes.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
