@@ -12,7 +12,7 @@
 // difference, as the source), checked to close before the first bond breaks.
 // Discretisation: the source used dx = 1 mm (25,946 points with its tip); the default here is
 // dx = 1.5 mm (m = 2.07) to run in minutes; problems/cases.txt runs dx = 1 mm.
-// Run: pmma_disk_impact_3d [--model lps|pmb] [--dx 1.5e-3] [--seed 1] [--t-end 2.5e-3] [--quick] [--check]
+// Run: pmma_disk_impact_3d [--model lps|pmb] [--dx 1.5e-3] [--seed 1] [--t-end 4e-3] [--quick] [--check]
 // Writes: history.csv (impactor z, v, contact force, support reaction, energies, broken bonds),
 // damage.csv and damage.vtu (final point damage), summary.csv, params.csv.
 #include "pd/contact.hpp"
@@ -66,6 +66,8 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
     const long steps = static_cast<long>(std::ceil(s.t_end / s.dt));
     const long every = std::max(1L, steps / 500);  // ~500 samples
     std::vector<double> ts, Fs;  // sampled |support force| history [s], [N]
+    long broken_at_contact = -1;
+    double Fc_max = 0, t_Fc_max = 0;  // maximum contact force on the tip [N] and its time [s]
     for (long n = 1; n <= steps; ++n) {
         sim.step(s.dt);
         if (std::isnan(o.t_first_break) && sim.broken_bonds > 0) o.t_first_break = sim.t;
@@ -76,16 +78,20 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
         const double Uc = tip.contact_energy(sim.positions(), s.body.volume);
         const double Ed = E0 - tip.kinetic_energy() - e.kinetic - e.strain - Uc;  // by difference
         h.row({sim.t, tip.c[2], tip.V[2], tip.F[2], F_sup, tip.kinetic_energy(), e.kinetic, e.strain, Uc, Ed, sim.broken_bonds});
-        if (sim.broken_bonds == 0) o.E_gap_pre = std::max(o.E_gap_pre, std::abs(Ed) / E0);
+        // Energy closure while no bond has broken since the tip touched (bonds floored at s0 = 0
+        // may break at round-off stretch before contact; they store no energy).
+        if (broken_at_contact < 0 && tip.in_contact > 0) broken_at_contact = sim.broken_bonds;
+        if (broken_at_contact < 0 || sim.broken_bonds == broken_at_contact) o.E_gap_pre = std::max(o.E_gap_pre, std::abs(Ed) / E0);
         o.E_damage = Ed;
         const double F = std::abs(F_sup);
         ts.push_back(sim.t), Fs.push_back(F);
         if (F > o.F_max) o.F_max = F, o.t_max = sim.t;
         o.w_max = std::max(o.w_max, s.thick + s.radius - tip.c[2]);
         o.steps = n;
-        // Stop: rebounding, or broken through (support force below 5 % of its maximum for
-        // 0.3 ms after the maximum).
-        if (tip.V[2] > 0 || (sim.t > o.t_max + 3e-4 && F < 0.05 * o.F_max)) break;
+        if (std::abs(tip.F[2]) > Fc_max) Fc_max = std::abs(tip.F[2]), t_Fc_max = sim.t;
+        // Stop: rebounding, or perforated (tip contact force below 2 % of its maximum 0.3 ms
+        // after that maximum).
+        if (tip.V[2] > 0 || (sim.t > t_Fc_max + 3e-4 && std::abs(tip.F[2]) < 0.02 * Fc_max)) break;
     }
     // First peak: the first sampled local maximum above half the maximum force that is followed
     // by a drop of at least 10 % (the source's first peak before the dip).
@@ -124,7 +130,7 @@ static int run(int argc, char** argv)
     double& s_sd = opt.add("s-sd", 3.32e-3, "critical stretch standard deviation");
     std::string& rule = opt.add_string("bond-rule", "min", "bond value from the two nodes", {"min", "mean", "bond"});
     int& seed = opt.add_int("seed", 1, "random field seed");
-    double& t_end = opt.add("t-end", 2.5e-3, "end time (quick 1.2e-3)", "s");
+    double& t_end = opt.add("t-end", 4e-3, "end time (quick 1.2e-3)", "s");
     double& dt_factor = opt.add("dt-factor", 0.5, "time step / Silling-Askari critical step (PMB bound; LPS at nu 0.35 is unstable at 0.8)");
     pd::io::add_standard(opt, "reports/3d/pmma_disk_impact");
     for (const char* o : {"E", "rho", "diameter", "thickness", "r-clamp", "delta", "dx", "mass", "tip-diameter", "v0", "penalty",
@@ -183,10 +189,10 @@ static int run(int argc, char** argv)
         {"first_peak_time", o.t_peak1, nan, nan, "s"},
         {"max_support_force", o.F_max, nan, nan, "N"},
         {"max_support_force_time", o.t_max, nan, nan, "s"},
-        {"first_bond_break_time", o.t_first_break, nan, nan, "s"},
+        {"first_bond_break_time", o.t_first_break, nan, nan, "s"},  // incl. floored bonds at rest
         {"tip_velocity_end", -o.v_end, v0, relative_error(-o.v_end, v0), "m/s"},  // reference: no deceleration
         {"tip_travel_max", o.w_max, nan, nan, "m"},
-        {"energy_gap_before_damage", o.E_gap_pre, 0, nan, "-"},
+        {"energy_gap_until_breakage_under_tip", o.E_gap_pre, 0, nan, "-"},
         {"damage_energy_end", o.E_damage, nan, nan, "J"},
         {"broken_bonds", static_cast<double>(o.broken), nan, nan, "-"},
         {"wall_time", o.wall, nan, nan, "s"}};
@@ -195,10 +201,11 @@ static int run(int argc, char** argv)
     for (const auto& r : rows)
         std::printf("%-28s %14.6g %14.6g %10.3e  %s\n", r.quantity.c_str(), r.value, r.reference, r.rel_error, r.unit.c_str());
 
-    // Checks: the energy balance closes within 2 % before any bond breaks (Verlet O(dt^2) with the
-    // stiff penalty, measured ~1e-3); the tip decelerates; a support force peak exists; bonds break.
+    // Checks: the energy balance closes within 2 % of E0 while no bond breaks under the tip
+    // (Verlet O(dt^2) with the stiff penalty; measured 1e-5 .. 1e-4); the tip decelerates; the
+    // support carries a force; bonds break.
     pd::io::Checks check;
-    check(o.E_gap_pre < 0.02, "energy balance closes within 2 % before the first bond breaks");
+    check(o.E_gap_pre < 0.02, "energy balance closes within 2 % until bonds break under the tip");
     check(-o.v_end < v0, "the tip decelerates");
     check(o.F_max > 0, "the support carries a reaction force");
     check(o.broken > 0, "bonds break under the tip");
