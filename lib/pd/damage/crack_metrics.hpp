@@ -16,6 +16,9 @@
 //   centrelines n = a + b s (least squares); the branch point is their intersection when it lies
 //   between the last single-band bin minus `fit` bins and the split bin, otherwise the centre of
 //   the last single-band bin. Branch angles atan(b) are measured from dir.
+// - Connected crack: the damaged nodes reachable from seed nodes (the pre-crack band) through
+//   damaged nodes, stepping along bonds no longer than a given length (a breadth-first search);
+//   damage that nucleates apart from the crack (at a free edge) is then not taken for its tip.
 // - Crack angle: principal axis (total least squares) of a node set, angle from the x axis.
 // - Path deviation from a reference line (origin, dir): the crack centreline is the mean normal
 //   coordinate of the damaged nodes of each bin in [s_begin, s_end]; its RMS and max |n|, and the
@@ -24,6 +27,7 @@
 //   squares on the node lattice (possibly rotated by an angle), linear interpolation on cell
 //   edges, saddle cells resolved by the cell mean; cells with a missing corner node are skipped.
 #pragma once
+#include "pd/bonds.hpp"
 #include "pd/field.hpp"
 
 #include <algorithm>
@@ -94,6 +98,26 @@ inline Tip tip_farthest(const Field<2>& x, const std::vector<double>& phi, const
                         double threshold = tip_threshold, const Mask& mask = {})
 {
     return detail::best_damaged(x, phi, threshold, mask, [&](const Vec<2>& p) { return norm(p - origin); });
+}
+
+// Mask of the damaged nodes connected to the damaged seed nodes (see header); candidates restrict
+// the search (empty = all nodes). step: largest bond length walked [m].
+inline Mask connected_damage(const Bonds& bonds, const std::vector<double>& phi, const Mask& seeds, double step,
+                             double threshold = tip_threshold, const Mask& candidates = {})
+{
+    Mask reached(phi.size(), 0);
+    std::vector<int> queue;
+    auto ok = [&](std::size_t i) { return phi[i] >= threshold && (candidates.empty() || candidates[i]); };
+    for (std::size_t i = 0; i < phi.size(); ++i)
+        if (seeds[i] && ok(i)) reached[i] = 1, queue.push_back(static_cast<int>(i));
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+        const int i = queue[q];
+        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
+            const int j = bonds.partner[k];
+            if (!reached[j] && bonds.length[k] <= step && ok(j)) reached[j] = 1, queue.push_back(j);
+        }
+    }
+    return reached;
 }
 
 struct SpeedSample {
