@@ -70,11 +70,13 @@ static int run(int argc, char** argv)
     double& t_end = opt.add("t-end", 50e-6, "simulated time", "s");
     double& window = opt.add("window", 2e-6, "crack-speed window (spec/002: 2 us)", "s");
     double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
+    double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
     pd::io::add_standard(opt, "reports/2d/crack_branching_glass");
     for (const char* o : {"length", "height", "crack", "dt", "dt-factor", "t-end", "window"}) opt.require_positive(o);
     for (const char* o : {"E", "rho", "Gc", "sigma"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
     opt.require_range("threshold", 0, 1, false, true);
+    opt.require_range("walk-threshold", 0, 1, false, true);
     opt.parse(argc, argv);
     const bool duran = material == "duran50";
     if (std::isnan(E)) E = duran ? 65e9 : 72e9;
@@ -110,13 +112,13 @@ static int run(int argc, char** argv)
         for (std::size_t i = 0; i < body.size(); ++i) inner[i] = std::abs(body.x.c[1][i] - H / 2) < H / 2 - delta;
 
         // 5. Integrate; record the tip every ~0.1 us: the farthest damaged node connected to the
-        //    pre-crack band (steps up to 2.5 dx: across one missing node), away from the loaded rows.
+        //    pre-crack band (steps up to 2.5 dx through nodes with phi >= 0.2), away from the loaded rows.
         pd::crack::TipHistory tips;
         std::vector<double> phi, seeds;
         auto connected = [&](const std::vector<double>& p) {
             pd::crack::Mask s(body.size());
             for (std::size_t i = 0; i < body.size(); ++i) s[i] = seeds[i] >= threshold;
-            return pd::crack::connected_damage(bonds, p, s, 2.5 * dx, threshold, inner);
+            return pd::crack::connected_damage(bonds, p, s, 2.5 * dx, walk, inner);
         };
         const long every = std::max(1L, std::lround(0.1e-6 / std::min(dt_max, 0.5 * dx / 5000)));  // ~0.1 us
         const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, delta, bc, dt_max, safety, t_end, every,

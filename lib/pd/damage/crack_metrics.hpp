@@ -16,9 +16,11 @@
 //   centrelines n = a + b s (least squares); the branch point is their intersection when it lies
 //   between the last single-band bin minus `fit` bins and the split bin, otherwise the centre of
 //   the last single-band bin. Branch angles atan(b) are measured from dir.
-// - Connected crack: the damaged nodes reachable from seed nodes (the pre-crack band) through
-//   damaged nodes, stepping along bonds no longer than a given length (a breadth-first search);
-//   damage that nucleates apart from the crack (at a free edge) is then not taken for its tip.
+// - Connected crack: the nodes with phi >= a walk threshold reachable from seed nodes (the
+//   pre-crack band) through such nodes, stepping along bonds no longer than a given length (a
+//   breadth-first search); damage that nucleates apart from the crack (at a free edge) is then
+//   not taken for its tip. The walk threshold may lie below the tip threshold: a running crack's
+//   band has nodes with phi between 0.2 and 0.35 where it turns across the lattice.
 // - Crack angle: principal axis (total least squares) of a node set, angle from the x axis.
 // - Path deviation from a reference line (origin, dir): the crack centreline is the mean normal
 //   coordinate of the damaged nodes of each bin in [s_begin, s_end]; its RMS and max |n|, and the
@@ -100,8 +102,8 @@ inline Tip tip_farthest(const Field<2>& x, const std::vector<double>& phi, const
     return detail::best_damaged(x, phi, threshold, mask, [&](const Vec<2>& p) { return norm(p - origin); });
 }
 
-// Mask of the damaged nodes connected to the damaged seed nodes (see header); candidates restrict
-// the search (empty = all nodes). step: largest bond length walked [m].
+// Mask of the nodes (phi >= threshold) connected to the seed nodes (see header); candidates
+// restrict the search (empty = all nodes). step: largest bond length walked [m].
 inline Mask connected_damage(const Bonds& bonds, const std::vector<double>& phi, const Mask& seeds, double step,
                              double threshold = tip_threshold, const Mask& candidates = {})
 {

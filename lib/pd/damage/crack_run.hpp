@@ -100,11 +100,12 @@ inline long break_bonds(Bonds& bonds, const std::function<bool(int, int)>& cut)
     return n;
 }
 
-// damage.csv: x_m, y_m, phi per node.
+// damage.csv: x_m, y_m, phi of the nodes with phi > 0 (the others are undamaged).
 inline void write_damage_csv(const std::filesystem::path& path, const Body<2>& body, const std::vector<double>& phi)
 {
     io::CsvWriter csv(path, {"x_m", "y_m", "phi"}, false);
-    for (std::size_t i = 0; i < body.size(); ++i) csv.row({body.x.c[0][i], body.x.c[1][i], phi[i]});
+    for (std::size_t i = 0; i < body.size(); ++i)
+        if (phi[i] > 0) csv.row({body.x.c[0][i], body.x.c[1][i], phi[i]});
     csv.flush();
 }
 
