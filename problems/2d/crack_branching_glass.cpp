@@ -65,6 +65,7 @@ static int run(int argc, char** argv)
     opt.add_string("dx-list", "1e-3,5e-4,2.5e-4", "lattice spacings of the refinement study (quick: 1e-3)");
     double& m = opt.add("m", 3, "horizon ratio delta/dx");
     std::string& pv = opt.add_string("partial-volume", "pa-pdlammps", "partial volumes", {"none", "pa-pdlammps"});
+    int& no_fail = opt.add_int("no-fail-rows", 0, "node rows at each loaded edge whose bonds never break (seed 001 A.2 item 8)");
     double& dt_max = opt.add("dt", 50e-9, "largest time step (spec/002: 50 ns)", "s");
     double& safety = opt.add("dt-factor", 0.8, "time step bound / Silling-Askari critical step");
     double& t_end = opt.add("t-end", 50e-6, "simulated time", "s");
@@ -75,6 +76,7 @@ static int run(int argc, char** argv)
     for (const char* o : {"length", "height", "crack", "dt", "dt-factor", "t-end", "window"}) opt.require_positive(o);
     for (const char* o : {"E", "rho", "Gc", "sigma"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
+    opt.require_at_least("no-fail-rows", 0);
     opt.require_range("threshold", 0, 1, false, true);
     opt.require_range("walk-threshold", 0, 1, false, true);
     opt.parse(argc, argv);
@@ -108,6 +110,9 @@ static int run(int argc, char** argv)
         pd::Boundary<2> bc;
         bc.traction(pd::select(body, pd::in_box<2>({{-1, H - dx}}, {{1, 2 * H}}), "top row"), {{0, sigma}}, dx);
         bc.traction(pd::select(body, pd::in_box<2>({{-1, -H}}, {{1, dx}}), "bottom row"), {{0, -sigma}}, dx);
+        const pd::NodeSet protect =
+            no_fail > 0 ? pd::select<2>(body, [&](const pd::Vec<2>& p) { return p[1] < no_fail * dx || p[1] > H - no_fail * dx; }, "no-fail rows")
+                        : pd::NodeSet{};
         pd::crack::Mask inner(body.size(), 0);  // tips and branches away from the loaded rows
         for (std::size_t i = 0; i < body.size(); ++i) inner[i] = std::abs(body.x.c[1][i] - H / 2) < H / 2 - delta;
 
@@ -127,7 +132,7 @@ static int run(int argc, char** argv)
                 const pd::crack::Mask crack = connected(p);
                 tips.push(t, pd::crack::tip_along(body.x, p, origin, dir, threshold, crack));
                 phi = std::move(p);
-            });
+            }, protect);
 
         // 6. Metrics: initiation (tip one dx beyond its start), branch (crack_metrics.hpp rule,
         //    confirm over 4 mm, branch lines fitted over 10 mm), speeds over the window.

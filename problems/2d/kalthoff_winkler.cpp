@@ -134,11 +134,12 @@ static int run(int argc, char** argv)
         std::printf("dx %.3g mm: %zu nodes, %zu bonds, s0 %.4g, dt %.3g ns (crit %.3g), %ld steps, %.1f s\n", dx * 1e3, body.size(),
                     bonds.size(), info.s0, info.dt * 1e9, info.dt_crit * 1e9, info.steps, info.wall);
         if (q == 0) {
-            pd::io::CsvWriter th(out / "tip_history.csv", {"t_s", "x_upper_m", "y_upper_m", "x_lower_m", "y_lower_m"}, false);
-            for (std::size_t l = 0; l < std::min(h_up.size(), h_low.size()); ++l)
-                th.row({h_up.t[l], h_up.x[l][0], h_up.x[l][1], h_low.x[l][0], h_low.x[l][1]});
-            pd::io::CsvWriter sp(out / "speed.csv", {"t_s", "v_upper_m_per_s"});
-            for (const auto& s : h_up.speed(window)) sp.row({s.t, s.v});
+            pd::io::CsvWriter th(out / "tip_history.csv", {"crack", "t_s", "x_m", "y_m", "distance_m"}, false);
+            pd::io::CsvWriter sp(out / "speed.csv", {"crack", "t_s", "v_m_per_s"});
+            for (const auto& [name, h] : {std::pair{"upper", &h_up}, std::pair{"lower", &h_low}}) {
+                for (std::size_t l = 0; l < h->size(); ++l) th.row({name, h->t[l], h->x[l][0], h->x[l][1], h->advance[l]});
+                for (const auto& s : h->speed(window)) sp.row({name, s.t, s.v});
+            }
             pd::crack::write_damage_csv(out / "damage.csv", body, phi);
             pd::crack::write_crack_path_csv(out / "crack_path.csv", body, phi);
         }
