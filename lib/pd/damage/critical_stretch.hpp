@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 namespace pd {
@@ -45,6 +46,8 @@ inline double s0_madenci_oterkus_3d(double Gc, const Elastic& m, double delta)
 
 struct CriticalStretch {
     double s0 = 0;                      // critical stretch [-]
+    std::vector<double> s0_bond;        // per-bond critical stretch [-] (random_field.hpp), symmetric
+                                        // (s0_bond[k] == s0_bond[reverse[k]]); empty = s0 everywhere
     std::vector<std::uint8_t> no_fail;  // per node, 1 = bonds never break; empty = none
 
     void protect(const NodeSet& set, std::size_t nodes)
@@ -53,10 +56,22 @@ struct CriticalStretch {
         for (int i : set) no_fail[i] = 1;
     }
 
-    // Breaks the bonds stretched beyond s0 at positions y; returns how many ordered bonds broke.
-    // s is symmetric in i, j, so bond i->j and its reverse break in the same pass.
+    // Breaks the bonds stretched beyond s0 (or s0_bond[k]) at positions y; returns how many ordered
+    // bonds broke. s and s0_bond are symmetric in i, j, so bond i->j and its reverse break in the
+    // same pass. The scalar case is its own instantiation of the loop (no per-bond load or branch).
     template <int D>
     long apply(Bonds& b, const Field<D>& y) const
+    {
+        if (!s0_bond.empty()) {
+            if (s0_bond.size() != b.size()) throw std::invalid_argument("CriticalStretch: s0_bond size differs from the bond count");
+            return apply_with(b, y, [this](std::int64_t k) { return s0_bond[k]; });
+        }
+        return apply_with(b, y, [this](std::int64_t) { return s0; });
+    }
+
+private:
+    template <int D, class S0>
+    long apply_with(Bonds& b, const Field<D>& y, S0 s0_of) const
     {
         long broken = 0;
 #pragma omp parallel for schedule(static) reduction(+ : broken)
@@ -67,7 +82,7 @@ struct CriticalStretch {
                 const int j = b.partner[k];
                 if (!no_fail.empty() && no_fail[j]) continue;
                 const double L = b.length[k];
-                if ((norm(y[j] - y[i]) - L) / L > s0) { b.intact[k] = 0; ++broken; }
+                if ((norm(y[j] - y[i]) - L) / L > s0_of(k)) { b.intact[k] = 0; ++broken; }
             }
         }
         return broken;

@@ -12,6 +12,9 @@
 // History models (viscoelastic, plastic): a model with set_time_step(dt) gets the step before the
 // force evaluation (0 in start()), which evaluates the trial state from the committed history, and
 // commit() after it, once per step; models without these members compile as before.
+// Extra force hook (contact.hpp: contact, impactors): extra_force(t, y, v, b) adds a body-force
+// density [N/m^3] to b after the boundary's body forces (v is the half-step velocity there); its
+// work enters the external work like any body force. Empty: nothing is called.
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
 // (initial energy + |external work|) and above a round-off floor (the whole mass moving at
 // 1e-10 m/s: a scene at rest stays quiet), throws Unstable naming the step and the node.
@@ -22,6 +25,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -88,6 +92,7 @@ public:
     Boundary<D> boundary;
     const CriticalStretch* damage = nullptr;  // null: no bond breaks
     double energy_limit = 10;          // stability guard factor (see header)
+    std::function<void(double t, const Field<D>& y, const Field<D>& v, Field<D>& b)> extra_force;  // see header
 
     Field<D> u, v, a;                  // displacement [m], velocity [m/s], acceleration [m/s^2]
     double t = 0;                      // [s]
@@ -215,6 +220,7 @@ private:
         }
         internal_force(model, bonds, y_, f_);
         boundary.external(t, b_);
+        if (extra_force) extra_force(t, y_, v, b_);
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < body.size(); ++i)
                 a.c[d][i] = constrained_[i * D + d] ? 0.0 : (f_.c[d][i] + b_.c[d][i]) / rho[i];

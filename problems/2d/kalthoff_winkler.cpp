@@ -1,0 +1,194 @@
+// problems/2d/kalthoff_winkler.cpp -- Kalthoff-Winkler edge impact on a double-notched steel plate,
+// 2D plane-strain PMB with critical stretch (spec/002 sec. 7.3, case V9).
+// Case: plate 200 x 100 mm [inferred in spec/002], two notches from the left edge, 50 mm long,
+// 50 mm apart, symmetric about the mid-line (bonds crossing them broken); the left-edge node row
+// between the notches moves at v = 16.5 m/s (prescribed velocity: half the 33 m/s impact speed,
+// equal impedances); all other edges free. Steel 18Ni1900: E 190 GPa, rho 8000 kg/m^3,
+// Gc 22170 J/m^2, plane strain (PMB: nu = 1/4). m = 3, PA-PDLAMMPS volumes, 90 us.
+// Reference: spec/002 Table/text of sec. 7.3 (adaptive level-1 PD, finest dx = 1 mm): crack
+// initiation ~24 us, straight crack at 68 deg (experiment ~70 deg), v_max 1981 m/s = 71 % of the
+// Rayleigh speed c_R = 2799.2 m/s (XFEM: 75 %).
+// Compared: initiation time (tip one dx beyond the notch tip), crack angle (principal axis of the
+// damaged nodes of each crack beyond 2 delta from its notch tip), maximum tip speed over 1.82 us
+// windows (tip = connected damaged node farthest from the notch tip), for each dx of the list.
+// Run: kalthoff_winkler_2d [--dx-list 1e-3,2e-3] [--v 16.5] [--quick] [--check] [--out DIR]
+// Writes: summary.csv (first dx), convergence.csv, tip_history.csv, speed.csv, damage.csv,
+// crack_path.csv (phi = 0.41), params.csv.
+#include "pd/damage/crack_run.hpp"
+#include "pd/damage/precrack.hpp"
+#include "pd/io/checks.hpp"
+#include "pd/io/guarded_main.hpp"
+#include "pd/io/list_option.hpp"
+#include "pd/io/options.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+namespace {
+constexpr double pi = 3.14159265358979323846;
+constexpr double deg = 180 / pi;
+
+struct Result {
+    double dx, t_init, angle_up, angle_low, v_max, v_max_low, wall, dt;
+    std::size_t nodes, bonds;
+    long steps;
+};
+}  // namespace
+
+static int run(int argc, char** argv)
+{
+    // 1. Options (SI; defaults = spec/002 sec. 7.3), echoed and saved.
+    pd::io::Options opt("kalthoff_winkler_2d", "Kalthoff-Winkler impact on a double-notched plate (2D plane-strain PMB).");
+    double& E = opt.add("E", 190e9, "Young's modulus", "Pa");
+    double& rho = opt.add("rho", 8000, "density", "kg/m^3");
+    double& Gc = opt.add("Gc", 22170, "fracture energy", "J/m^2");
+    double& v_imp = opt.add("v", 16.5, "prescribed velocity of the impacted edge between the notches", "m/s");
+    double& L = opt.add("length", 0.2, "plate length (x)", "m");
+    double& H = opt.add("height", 0.1, "plate height (y)", "m");
+    double& a0 = opt.add("notch", 0.05, "notch length from the left edge", "m");
+    double& gap = opt.add("notch-distance", 0.05, "distance between the notches (symmetric about the mid-line)", "m");
+    opt.add_string("dx-list", "1e-3,2e-3", "lattice spacings (quick: 1e-3 to 50 us)");
+    double& m = opt.add("m", 3, "horizon ratio delta/dx");
+    std::string& pv = opt.add_string("partial-volume", "pa-pdlammps", "partial volumes", {"none", "pa-pdlammps"});
+    double& dt_max = opt.add("dt", 70e-9, "largest time step (spec/002: 70 ns at dx = 1 mm)", "s");
+    double& safety = opt.add("dt-factor", 0.8, "time step bound / Silling-Askari critical step");
+    double& t_end = opt.add("t-end", 90e-6, "simulated time", "s");
+    double& window = opt.add("window", 1.82e-6, "crack-speed window (spec/002: 1.82 us)", "s");
+    double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
+    double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
+    pd::io::add_standard(opt, "reports/2d/kalthoff_winkler");
+    for (const char* o : {"E", "rho", "Gc", "v", "length", "height", "notch", "notch-distance", "dt", "dt-factor", "t-end", "window"})
+        opt.require_positive(o);
+    opt.require_at_least("m", 1);
+    opt.require_range("threshold", 0, 1, false, true);
+    opt.require_range("walk-threshold", 0, 1, false, true);
+    opt.parse(argc, argv);
+    if (!(a0 < L) || !(gap < H)) opt.fail("option --notch/--notch-distance: notches must lie inside the plate");
+    const bool quick = opt.get_flag("quick");
+    if (quick && !opt.given("t-end")) t_end = 50e-6;  // initiation and the run of the cracks
+    const std::vector<double> dxs = quick && !opt.given("dx-list") ? std::vector<double>{1e-3}
+                                                                    : pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
+    const std::filesystem::path out = opt.get_string("out");
+    pd::set_threads(opt.get_int("threads"));
+    opt.echo(std::cout);
+    opt.save_csv(out / "params.csv");
+    const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::strain};
+    const double y_up = 0.5 * (H + gap), y_low = 0.5 * (H - gap);  // notch lines [m]
+
+    std::vector<Result> results;
+    for (std::size_t q = 0; q < dxs.size(); ++q) {
+        // 2. Discretisation; notches as broken bonds.
+        const double dx = dxs[q], delta = m * dx;
+        if (std::lround(y_low / dx) < 2 * m) opt.fail("option --dx-list: dx too coarse for the ligaments");
+        const pd::Body<2> body = pd::box<2>({{0, 0}}, {{L, H}}, dx);
+        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv)});
+        for (double y : {y_up, y_low}) {
+            const auto keep = pd::crack::symmetric(pd::cut_by_segment(body, {{-dx, y}}, {{a0, y}}));
+            pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
+        }
+
+        // 3.-4. Prescribed velocity on the left node row between the notches.
+        pd::Boundary<2> bc;
+        const pd::NodeSet impact = pd::select(body, pd::in_box<2>({{-1, y_low}}, {{dx, y_up}}), "impact zone");
+        bc.prescribe({pd::Prescribed::Kind::velocity, impact, 0, pd::TimeFunction::constant(v_imp)});
+
+        // 5. Integrate; tips every ~0.1 us: per notch, the damaged node farthest from the notch tip
+        //    among those connected to the notch band (steps <= 2.5 dx through nodes with phi >= 0.2,
+        //    right of the notch tip minus 2 delta, on the notch's side of the mid-line), excluding
+        //    the notch band itself (x < notch tip - dx).
+        const pd::Vec<2> tip_up{{a0, y_up}}, tip_low{{a0, y_low}};
+        pd::crack::Mask side_up(body.size()), side_low(body.size());
+        for (std::size_t i = 0; i < body.size(); ++i) {
+            const bool right = body.x.c[0][i] > a0 - 2 * delta;
+            side_up[i] = right && body.x.c[1][i] > H / 2, side_low[i] = right && body.x.c[1][i] < H / 2;
+        }
+        pd::crack::TipHistory h_up, h_low;
+        std::vector<double> phi, seeds;
+        auto crack_of = [&](const std::vector<double>& p, const pd::crack::Mask& side) {
+            pd::crack::Mask s(body.size());
+            for (std::size_t i = 0; i < body.size(); ++i) s[i] = seeds[i] >= threshold;
+            pd::crack::Mask c = pd::crack::connected_damage(bonds, p, s, 2.5 * dx, walk, side);
+            for (std::size_t i = 0; i < body.size(); ++i) c[i] = c[i] && body.x.c[0][i] >= a0 - dx;  // not the notch band
+            return c;
+        };
+        const long every = std::max(1L, std::lround(0.1e-6 / dt_max));
+        const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, delta, bc, dt_max, safety, t_end, every,
+            [&](double t, std::vector<double> p, auto&) {
+                if (seeds.empty()) seeds = p;
+                h_up.push(t, pd::crack::tip_farthest(body.x, p, tip_up, threshold, crack_of(p, side_up)));
+                h_low.push(t, pd::crack::tip_farthest(body.x, p, tip_low, threshold, crack_of(p, side_low)));
+                phi = std::move(p);
+            });
+
+        // 6. Metrics: angle of each crack from its damaged nodes beyond 2 delta of the notch tip.
+        auto angle = [&](const pd::Vec<2>& tip, const pd::crack::Mask& side) {
+            const pd::crack::Mask c = crack_of(phi, side);
+            std::vector<pd::Vec<2>> pts;
+            for (std::size_t i = 0; i < body.size(); ++i)
+                if (c[i] && phi[i] >= threshold && norm(body.x[i] - tip) > 2 * delta) pts.push_back(body.x[i]);
+            return pts.size() >= 2 ? pd::crack::principal_angle(pts) * deg : pd::crack::nan;
+        };
+        const double t_i = std::min(h_up.initiation_time(0.99 * dx), h_low.initiation_time(0.99 * dx));
+        results.push_back({dx, t_i, angle(tip_up, side_up), angle(tip_low, side_low), h_up.max_speed(window),
+                           h_low.max_speed(window), info.wall, info.dt, body.size(), bonds.size(), info.steps});
+        std::printf("dx %.3g mm: %zu nodes, %zu bonds, s0 %.4g, dt %.3g ns (crit %.3g), %ld steps, %.1f s\n", dx * 1e3, body.size(),
+                    bonds.size(), info.s0, info.dt * 1e9, info.dt_crit * 1e9, info.steps, info.wall);
+        if (q == 0) {
+            pd::io::CsvWriter th(out / "tip_history.csv", {"crack", "t_s", "x_m", "y_m", "distance_m"}, false);
+            pd::io::CsvWriter sp(out / "speed.csv", {"crack", "t_s", "v_m_per_s"});
+            for (const auto& [name, h] : {std::pair{"upper", &h_up}, std::pair{"lower", &h_low}}) {
+                for (std::size_t l = 0; l < h->size(); ++l) th.row({name, h->t[l], h->x[l][0], h->x[l][1], h->advance[l]});
+                for (const auto& s : h->speed(window)) sp.row({name, s.t, s.v});
+            }
+            pd::crack::write_damage_csv(out / "damage.csv", body, phi);
+            pd::crack::write_crack_path_csv(out / "crack_path.csv", body, phi);
+        }
+    }
+
+    // 7. Tables and verdict. Rayleigh speed by Viktorov's approximation c_R = c_s (0.862 + 1.14 nu)/(1 + nu).
+    const double nu = mat.nu(), cR = std::sqrt(E / (2 * (1 + nu) * rho)) * (0.862 + 1.14 * nu) / (1 + nu);
+    const double cR_pub = 2799.2, t_pub = 24e-6, angle_pub = 68, angle_exp = 70, v_pub = 1981;  // spec/002 sec. 7.3
+    pd::io::CsvWriter conv(out / "convergence.csv", {"dx_m", "delta_m", "m", "nodes", "bonds", "error", "rate", "wall_s", "t_init_s",
+                                                     "angle_upper_deg", "angle_lower_deg", "v_max_upper_m_per_s",
+                                                     "v_max_lower_m_per_s", "dt_s", "steps"});
+    std::printf("\n%8s %8s %8s %10s %10s %10s %10s %8s\n", "dx_mm", "nodes", "t_i_us", "angle_up", "angle_low", "v_max_up", "v_max_low", "wall_s");
+    for (const Result& r : results) {
+        conv.row({r.dx, m * r.dx, m, r.nodes, r.bonds, pd::io::relative_error(r.angle_up, angle_pub), pd::crack::nan, r.wall, r.t_init,
+                  r.angle_up, r.angle_low, r.v_max, r.v_max_low, r.dt, r.steps});
+        std::printf("%8.3g %8zu %8.2f %10.1f %10.1f %10.0f %10.0f %8.1f\n", r.dx * 1e3, r.nodes, r.t_init * 1e6, r.angle_up, r.angle_low,
+                    r.v_max, r.v_max_low, r.wall);
+    }
+    const Result& r = results.front();
+    using pd::io::relative_error;
+    const double nan = pd::crack::nan;
+    const std::vector<pd::io::SummaryRow> rows{
+        {"t_init_s", r.t_init, t_pub, relative_error(r.t_init, t_pub), "s"},
+        {"crack_angle_deg", r.angle_up, angle_pub, relative_error(r.angle_up, angle_pub), "deg"},
+        {"crack_angle_vs_experiment_deg", r.angle_up, angle_exp, relative_error(r.angle_up, angle_exp), "deg"},
+        {"crack_angle_lower_deg", r.angle_low, -angle_pub, relative_error(r.angle_low, -angle_pub), "deg"},
+        {"v_max_m_per_s", r.v_max, v_pub, relative_error(r.v_max, v_pub), "m/s"},
+        {"v_max_over_c_R", r.v_max / cR, v_pub / cR_pub, relative_error(r.v_max / cR, v_pub / cR_pub), "-"},
+        {"c_R_m_per_s", cR, cR_pub, relative_error(cR, cR_pub), "m/s"},  // ours nu = 1/4, published nu = 0.3 (spec/002 sec. 9)
+        {"nodes", static_cast<double>(r.nodes), nan, nan, "-"},
+        {"wall_time", r.wall, nan, nan, "s"}};
+    pd::io::write_summary(out / "summary.csv", rows);
+    std::printf("\n%-30s %14s %14s %10s  %s\n", "quantity", "value", "reference", "rel_error", "unit");
+    for (const auto& s : rows)
+        std::printf("%-30s %14.6g %14.6g %10.3e  %s\n", s.quantity.c_str(), s.value, s.reference, s.rel_error, s.unit.c_str());
+
+    // Tolerances: both crack angles within 10 deg of +-68 (the published value comes from an
+    // adaptive grid; our uniform grid has weak bond directions at 63.4 and 71.6 deg near it:
+    // spec/002 sec. 6.2), the tip slower than c_R, initiation within 50 % of 24 us (our tip rule
+    // and the published one may differ by a few dx of growth). The up/down asymmetry is reported,
+    // not checked.
+    pd::io::Checks check;
+    check(std::abs(r.angle_up - angle_pub) <= 10, "upper crack angle within 10 deg of 68 deg");
+    check(std::abs(r.angle_low + angle_pub) <= 10, "lower crack angle within 10 deg of -68 deg");
+    check(r.v_max < cR && r.v_max_low < cR, "maximum tip speeds below the Rayleigh speed");
+    check(relative_error(r.t_init, t_pub) <= 0.5, "initiation within 50 % of 24 us");
+    std::printf("%s: dx %.3g mm: initiation %.2f us (24), angle %.1f / %.1f deg (68), v_max %.0f m/s = %.0f %% c_R (71 %%)\n",
+                check.passed() ? "PASS" : "FAIL", r.dx * 1e3, r.t_init * 1e6, r.angle_up, r.angle_low, r.v_max, 100 * r.v_max / cR);
+    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+}
+
+int main(int argc, char** argv) { return pd::io::guarded_main("kalthoff_winkler_2d", [&] { return run(argc, argv); }); }
