@@ -22,6 +22,11 @@
 //   Vec<D> node_force(std::size_t i) const;   // added once to the lane sum of node i [N/m^3]
 // for a part of the force that factors out of the family sum (correspondence: the i-end term
 // P_i K_i^-1 sum_j omega xi V_j, computed once per node instead of once per bond).
+// Family kernel: a kernel may instead supply
+//   template <bool Damaged> Vec<D> family_force(std::size_t i, const Bonds&, const Field<D>& y) const;
+// which returns the whole f_i (node term included) and may vectorise its own way, but must add
+// bond begin(i) + l + 8 m into partial sum l and reduce as LaneSum does, so that the result does
+// not depend on the threads (correspondence: the partner matrices read within the bond, 3D AVX2).
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
 // without that array (if constexpr).
@@ -94,6 +99,13 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     const double* y0 = y.c[0].data();
     const double* y1 = D > 1 ? y.c[1].data() : nullptr;
     const double* y2 = D > 2 ? y.c[2].data() : nullptr;
+    if constexpr (requires { model.template family_force<Damaged>(std::size_t{}, bonds, y); }) {
+        parallel_for(bonds.nodes(), [&](std::size_t i) {
+            const Vec<D> fi = model.template family_force<Damaged>(i, bonds, y);
+            for (int d = 0; d < D; ++d) f.c[d][i] = fi[d];
+        });
+        return;
+    }
     parallel_for(bonds.nodes(), [&](std::size_t i) {
         LaneSum<D> sum;
         const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;

@@ -90,7 +90,9 @@ static int run(int argc, char** argv)
     const std::vector<double> dxs = quick && !opt.given("dx-list") ? std::vector<double>{1e-3}
                                                                     : pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
     const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
+    // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
+    // wait for a descheduled thread): one thread unless --threads is given.
+    pd::set_threads(quick && !opt.given("threads") ? 1 : opt.get_int("threads"));
     opt.echo(std::cout);
     opt.save_csv(out / "params.csv");
     const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::stress};

@@ -28,7 +28,10 @@
 // Cost (issue 3; reports/3d/model_cost.md): the family sums K, F K (and Fdot K) are lane sums in the
 // bond-loop order, K and sum omega xi V in the same pass as F once bonds can break; the i-end force
 // P_i K_i^-1 sum_j omega xi V_j is summed once per node (kernel node_force); the bond kernel reads
-// P_j K_j^-1 and F_j of node j (18 values per bond: what remains is this gather, about 6x PMB).
+// P_j K_j^-1 and F_j of node j (18 values per bond). 3D with AVX2/FMA (round 3 of issue 3): both
+// passes are vectorised within the bond where they touch node j (Kernel::family_force: the
+// partner matrices as 6 aligned column loads from `blocks`, then transposed for the rest across 4
+// bonds; deformation_sum: padded x and y), same lanes and order as the generic code (about 4.8x PMB).
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
@@ -40,10 +43,16 @@
 #include "pd/parallel.hpp"
 
 #include <Eigen/Dense>
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#define PD_CORRESPONDENCE_AVX2 1
+#endif
 
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <new>
 #include <stdexcept>
 #include <vector>
 
@@ -82,6 +91,20 @@ struct Correspondence {
     std::vector<Mat> P;               // first Piola-Kirchhoff stress [Pa]
     std::vector<Mat> PKinv;           // P_i K_i^-1 [Pa/m^5 in 3D]
     std::vector<Mat> sigma_hat, R, V; // Flanagan-Taylor: unrotated stress [Pa], rotation, left stretch [-]
+    // Copy of P K^-1 [Pa/m^5] and F [-] per node for the bond kernel, written by point_pass: 3D, per
+    // node 24 doubles (64-byte aligned) = per column c the 4-padded A(:,c) then the 4-padded F(:,c),
+    // so that a bond reads the partner's matrices as 6 aligned 256-bit loads (3 cache lines).
+    struct Aligned64 {  // allocator of 64-byte aligned doubles (a block starts a cache line)
+        using value_type = double;
+        template <class U>
+        struct rebind { using other = Aligned64; };  // only ever rebound to double
+        double* allocate(std::size_t n) { return static_cast<double*>(::operator new(n * sizeof(double), std::align_val_t{64})); }
+        void deallocate(double* p, std::size_t) { ::operator delete(p, std::align_val_t{64}); }
+        friend bool operator==(Aligned64, Aligned64) { return true; }
+    };
+    std::vector<double, Aligned64> blocks;
+    std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
+    static constexpr int BS = 24;     // doubles per node block
 
     Correspondence() = default;
     Correspondence(const Params& p, const Body<D>& body, const Bonds& b)
@@ -103,6 +126,13 @@ struct Correspondence {
             sigma_hat.assign(b.nodes(), Mat::Zero());
             R.assign(b.nodes(), Mat::Identity());
             V.assign(b.nodes(), Mat::Identity());
+        }
+        if (D == 3) {
+            blocks.assign(BS * b.nodes(), 0.0);
+            xpad.assign(4 * b.nodes(), 0.0);
+            ypad.assign(4 * b.nodes(), 0.0);
+            for (std::size_t i = 0; i < b.nodes(); ++i)
+                for (int d = 0; d < D; ++d) xpad[4 * i + d] = x.c[d][i];
         }
         shape_tensors(b);
     }
@@ -231,6 +261,7 @@ struct Correspondence {
         const double* hg;          // c_hg V_j / |xi| per bond [N/m^4] (Hourglass only)
         const double* A;           // P K^-1 per node, D x D column-major blocks [Pa/m^5]
         const double* F;           // F per node, D x D column-major blocks [-] (Hourglass only)
+        const double* blk;         // per node A and F, 4-padded columns (Correspondence::blocks; 3D)
         Vec<D> node_force(std::size_t i) const
         {
             Vec<D> f;
@@ -263,6 +294,101 @@ struct Correspondence {
             }
             return f;
         }
+#ifdef PD_CORRESPONDENCE_AVX2
+        // 4 x 4 transpose of the first 3 entries: r[b][d] -> out[d][b].
+        static void transpose3(const __m256d* r, __m256d* out)
+        {
+            const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
+            const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
+            out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+            out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+            out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+        }
+        // The whole f_i (bond_loop.hpp, family kernel), 3D: the same arithmetic as bond_force, bond
+        // by bond in the same lanes and order. The partner products A_j xi and (F_i + F_j) xi are
+        // taken within the bond (3 broadcast xi components times 3 column loads each), transposed,
+        // and the rest (Y, hourglass projection, division, sums) runs across 4 bonds.
+        template <bool Damaged>
+            requires(D == 3)
+        Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y) const
+        {
+            const std::int64_t kb = b.offset[i], ke = b.offset[i + 1];
+            const int* partner = b.partner.data();
+            const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
+            __m256d xi_[3], yi_[3], Fi[3], acc[2][3];
+            for (int d = 0; d < 3; ++d) {
+                xi_[d] = _mm256_set1_pd(x[d][i]);
+                yi_[d] = _mm256_set1_pd(yc[d][i]);
+                Fi[d] = Hourglass ? _mm256_loadu_pd(blk + BS * i + 8 * d + 4) : _mm256_setzero_pd();
+                acc[0][d] = acc[1][d] = _mm256_setzero_pd();
+            }
+            std::int64_t k = kb;
+            for (; k + detail::lanes <= ke; k += detail::lanes)
+                for (int h = 0; h < 2; ++h) {
+                    const std::int64_t k0 = k + 4 * h;
+                    __m256d a[4], g[4], Ax[3], Gx[3], Yx[3];
+                    int jj[4];
+                    for (int q = 0; q < 4; ++q) {
+                        const int j = jj[q] = partner[k0 + q];
+                        const double* Bj = blk + BS * static_cast<std::size_t>(j);
+                        __m256d e[3];
+                        for (int d = 0; d < 3; ++d) e[d] = _mm256_sub_pd(_mm256_broadcast_sd(x[d] + j), xi_[d]);
+                        a[q] = _mm256_mul_pd(_mm256_load_pd(Bj), e[0]);
+                        a[q] = _mm256_fmadd_pd(_mm256_load_pd(Bj + 8), e[1], a[q]);
+                        a[q] = _mm256_fmadd_pd(_mm256_load_pd(Bj + 16), e[2], a[q]);
+                        if constexpr (Hourglass) {
+                            g[q] = _mm256_mul_pd(_mm256_add_pd(Fi[0], _mm256_load_pd(Bj + 4)), e[0]);
+                            g[q] = _mm256_fmadd_pd(_mm256_add_pd(Fi[1], _mm256_load_pd(Bj + 12)), e[1], g[q]);
+                            g[q] = _mm256_fmadd_pd(_mm256_add_pd(Fi[2], _mm256_load_pd(Bj + 20)), e[2], g[q]);
+                        }
+                    }
+                    transpose3(a, Ax);
+                    const __m256d w = _mm256_loadu_pd(wV + k0);
+                    __m256d f[3];
+                    for (int d = 0; d < 3; ++d) {
+                        Yx[d] = _mm256_sub_pd(_mm256_set_pd(yc[d][jj[3]], yc[d][jj[2]], yc[d][jj[1]], yc[d][jj[0]]), yi_[d]);
+                        f[d] = _mm256_mul_pd(w, Ax[d]);
+                    }
+                    if constexpr (Hourglass) {
+                        transpose3(g, Gx);
+                        const __m256d two = _mm256_set1_pd(2.0);
+                        __m256d proj = _mm256_mul_pd(_mm256_fmsub_pd(two, Yx[0], Gx[0]), Yx[0]);
+                        __m256d y2 = _mm256_mul_pd(Yx[0], Yx[0]);
+                        for (int d = 1; d < 3; ++d) {
+                            proj = _mm256_fmadd_pd(_mm256_fmsub_pd(two, Yx[d], Gx[d]), Yx[d], proj);
+                            y2 = _mm256_fmadd_pd(Yx[d], Yx[d], y2);
+                        }
+                        const __m256d den = _mm256_blendv_pd(_mm256_set1_pd(1.0), y2, _mm256_cmp_pd(y2, _mm256_setzero_pd(), _CMP_GT_OQ));
+                        const __m256d t = _mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(hg + k0), proj), den);
+                        for (int d = 0; d < 3; ++d) f[d] = _mm256_fmadd_pd(t, Yx[d], f[d]);
+                    }
+                    if constexpr (Damaged) {
+                        std::int32_t flags;
+                        std::memcpy(&flags, b.intact.data() + k0, 4);
+                        const __m256d keep = _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(flags)));
+                        for (int d = 0; d < 3; ++d) f[d] = _mm256_mul_pd(f[d], keep);
+                    }
+                    for (int d = 0; d < 3; ++d) acc[h][d] = _mm256_add_pd(acc[h][d], f[d]);
+                }
+            detail::LaneSum<3> sum;
+            for (int d = 0; d < 3; ++d) {
+                _mm256_storeu_pd(sum.s[d], acc[0][d]);
+                _mm256_storeu_pd(sum.s[d] + 4, acc[1][d]);
+            }
+            for (int l = 0; k < ke; ++k, ++l) {
+                const int j = partner[k];
+                Vec<D> Y;
+                for (int d = 0; d < 3; ++d) Y[d] = yc[d][j] - yc[d][i];
+                Vec<D> fk = bond_force(i, k, j, Y);
+                if constexpr (Damaged) fk *= static_cast<double>(b.intact[k]);
+                for (int d = 0; d < 3; ++d) sum.s[d][l] += fk[d];
+            }
+            const Vec<D> fn = node_force(i);
+            Vec<D> r;
+            for (int d = 0; d < 3; ++d) r[d] = sum.total(d) + fn[d];
+            return r;
+        }
+#endif
     };
     template <bool Hourglass>
     Kernel<Hourglass> kernel() const
@@ -273,6 +399,7 @@ struct Correspondence {
         kn.hg = Hourglass ? hg.data() : nullptr;
         kn.A = PKinv.empty() ? nullptr : PKinv.front().data();
         kn.F = F.empty() ? nullptr : F.front().data();
+        kn.blk = blocks.empty() ? nullptr : blocks.data();
         return kn;
     }
     // Calls pass(kernel) with the hourglass term compiled in or out (bond_loop.hpp).
@@ -358,10 +485,20 @@ private:
     template <bool Damaged, int Dy>
     void stress_pass(const Bonds& b, const Field<Dy>& y)
     {
+#ifdef PD_CORRESPONDENCE_AVX2
+        constexpr bool fast = !Damaged && D == 3;
+        if constexpr (fast)
+            parallel_for(b.nodes(), [&](std::size_t i) {
+                for (int d = 0; d < D; ++d) ypad[4 * i + d] = y.c[d][i];
+            });
+#else
+        constexpr bool fast = false;
+#endif
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
-            family_sums<Damaged, Damaged, 1>(b, i, {&y}, &N, &K, &m);
+            if constexpr (fast) N = deformation_sum(b, i);
+            else family_sums<Damaged, Damaged, 1>(b, i, {&y}, &N, &K, &m);
             if constexpr (Damaged) {
                 Kinv[i] = inverse_or_zero(K);
                 for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
@@ -370,6 +507,7 @@ private:
                 F[i] = Mat::Identity();
                 P[i] = PKinv[i] = Mat::Zero();
                 for (int d = 0; d < D; ++d) f_own.c[d][i] = 0;
+                write_block(i);
                 return;
             }
             F[i] = N * Kinv[i];
@@ -388,7 +526,54 @@ private:
                 for (int c = 0; c < D; ++c) s += PKinv[i](a, c) * m_xi.c[c][i];
                 f_own.c[a][i] = s;
             }
+            write_block(i);
         });
+    }
+
+#ifdef PD_CORRESPONDENCE_AVX2
+    // N = sum_j omega (y_j - y_i) (x) xi V_j of node i without damage (3D; family_sums<false, false, 1>
+    // with the same lanes, order and arithmetic): lane l takes bonds begin + l + 8 m in turn, and
+    // each bond adds (y_j - y_i) w xi_c to column c as one 4-wide FMA (xpad, ypad: 2 loads per bond).
+    Mat deformation_sum(const Bonds& b, std::size_t i) const
+    {
+        const std::int64_t kb = b.offset[i], ke = b.offset[i + 1];
+        const int* partner = b.partner.data();
+        const __m256d xi_ = _mm256_load_pd(xpad.data() + 4 * i), yi_ = _mm256_load_pd(ypad.data() + 4 * i);
+        detail::LaneSum<DD> sum;
+        for (int l = 0; l < detail::lanes && kb + l < ke; ++l) {
+            __m256d acc[3] = {_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
+            for (std::int64_t k = kb + l; k < ke; k += detail::lanes) {
+                const std::size_t j = static_cast<std::size_t>(partner[k]);
+                const __m256d we = _mm256_mul_pd(_mm256_set1_pd(wV[k]), _mm256_sub_pd(_mm256_load_pd(xpad.data() + 4 * j), xi_));
+                const __m256d dz = _mm256_sub_pd(_mm256_load_pd(ypad.data() + 4 * j), yi_);
+                acc[0] = _mm256_fmadd_pd(dz, _mm256_permute4x64_pd(we, 0x00), acc[0]);
+                acc[1] = _mm256_fmadd_pd(dz, _mm256_permute4x64_pd(we, 0x55), acc[1]);
+                acc[2] = _mm256_fmadd_pd(dz, _mm256_permute4x64_pd(we, 0xaa), acc[2]);
+            }
+            for (int c = 0; c < 3; ++c) {
+                alignas(32) double t[4];
+                _mm256_store_pd(t, acc[c]);
+                for (int a = 0; a < 3; ++a) sum.s[a + 3 * c][l] = t[a];
+            }
+        }
+        Mat N;
+        for (int a = 0; a < 3; ++a)
+            for (int c = 0; c < 3; ++c) N(a, c) = sum.total(a + 3 * c);
+        return N;
+    }
+#endif
+
+    // blocks of node i from PKinv[i] and F[i] (3D).
+    void write_block(std::size_t i)
+    {
+        if constexpr (D == 3) {
+            double* B = blocks.data() + BS * i;
+            for (int c = 0; c < 3; ++c)
+                for (int a = 0; a < 3; ++a) {
+                    B[8 * c + a] = PKinv[i](a, c);
+                    B[8 * c + 4 + a] = F[i](a, c);
+                }
+        }
     }
 };
 
