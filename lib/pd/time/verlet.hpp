@@ -8,7 +8,9 @@
 // change of kinetic energy of the constrained components, which the constraint supplies).
 // A velocity-prescribed component ends the step at g(t_{n+1}).
 // Damage: bonds break before the force evaluation; a model with recompute(bonds) gets it called
-// whenever bonds broke.
+// whenever bonds broke. Either rule, or none: `damage` (critical stretch) or `micropotential`
+// (damage/micropotential.hpp; its work increments are accumulated right after the force evaluation).
+// Null pointers cost one test per step, nothing per bond.
 // History models (viscoelastic, plastic): a model with set_time_step(dt) gets the step before the
 // force evaluation (0 in start()), which evaluates the trial state from the committed history, and
 // commit() after it, once per step; models without these members compile as before.
@@ -22,6 +24,7 @@
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
 #include "pd/damage/critical_stretch.hpp"
+#include "pd/damage/micropotential.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -90,7 +93,8 @@ public:
     Model& model;
     std::vector<double> rho;           // density per node [kg/m^3]
     Boundary<D> boundary;
-    const CriticalStretch* damage = nullptr;  // null: no bond breaks
+    const CriticalStretch* damage = nullptr;  // null: no bond breaks by critical stretch
+    CriticalMicropotential<D>* micropotential = nullptr;  // null: no bond breaks by micropotential
     double energy_limit = 10;          // stability guard factor (see header)
     std::function<void(double t, const Field<D>& y, const Field<D>& v, Field<D>& b)> extra_force;  // see header
 
@@ -210,8 +214,8 @@ private:
     void evaluate()
     {
         add_fields(body.x, u, y_);
-        if (damage) {
-            const long broke = damage->apply(bonds, y_);
+        if (damage || micropotential) {
+            const long broke = (damage ? damage->apply(bonds, y_) : 0) + (micropotential ? micropotential->apply(bonds) : 0);
             broken_bonds += broke;
             // Models with bond-dependent per-node constants (PALS multipliers, LPS m_i and SCF_i)
             // refresh them over the intact bonds; correspondence recomputes K in its point pass.
@@ -219,6 +223,7 @@ private:
                 if (broke > 0) model.recompute(bonds);
         }
         internal_force(model, bonds, y_, f_);
+        if (micropotential) micropotential->accumulate(model, bonds, y_);
         boundary.external(t, b_);
         if (extra_force) extra_force(t, y_, v, b_);
         for (int d = 0; d < D; ++d)
