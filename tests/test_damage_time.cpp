@@ -85,6 +85,28 @@ TEST(Damage, PrecracksCutTheHandCountedBonds)
     EXPECT_EQ(build_bonds(cube, 1.0, opt3).size(), 16u);
 }
 
+// Symmetry: cut(i, j) == cut(j, i) for every pair, including bonds through a crack end point.
+// Cracks ending mid-cell at x = a0 on a 1 mm lattice with offsets that put the end point on lattice
+// diagonals (the case of the 2D fracture drivers, where the i-j and j-i orientation products
+// differed by round-off before the filter sorted the pair).
+TEST(Damage, PrecrackFilterIsSymmetricInTheBondEnds)
+{
+    const double dx = 1e-3;
+    auto plate = box<2>({{0, 0}}, {{0.04, 0.02}}, dx);
+    long pairs = 0;
+    for (double a0 : {0.0105, 0.015, 0.0200001, 0.0235}) {
+        const auto keep = cut_by_segment(plate, {{-dx, 0.01}}, {{a0, 0.01}});
+        for (std::size_t i = 0; i < plate.size(); ++i)
+            for (std::size_t j = 0; j < i; ++j) {
+                const double rx = plate.x.c[0][i] - plate.x.c[0][j], ry = plate.x.c[1][i] - plate.x.c[1][j];
+                if (rx * rx + ry * ry > 9.1 * dx * dx) continue;  // horizon 3 dx
+                ++pairs;
+                EXPECT_EQ(keep(int(i), int(j)), keep(int(j), int(i))) << "a0 = " << a0 << ", pair " << i << "-" << j;
+            }
+    }
+    EXPECT_GT(pairs, 10000);
+}
+
 // 1D chain, m = 3, interior node: sum_j V c/|xi| = 2 A dx c (1 + 1/2 + 1/3)/dx = (11/3) A c,
 // c = 2E/(A delta^2)  ->  dt = sqrt(2 rho / ((11/3) 2E/delta^2)) = delta sqrt(3 rho / (11 E)).
 TEST(CriticalStep, SillingAskari1DHandValue)

@@ -105,7 +105,7 @@ static int run(int argc, char** argv)
         const pd::Body<2> body = pd::box<2>({{0, 0}}, {{L, H}}, dx);
         const pd::Vec<2> origin{{0, H / 2}}, dir{{1, 0}};
         pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv)});
-        const auto keep = pd::crack::symmetric(pd::cut_by_segment(body, {{-dx, H / 2}}, {{a0, H / 2}}));
+        const auto keep = pd::cut_by_segment(body, {{-dx, H / 2}}, {{a0, H / 2}});
         pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
 
         // 3.-4. Step traction on the top and bottom node rows; free edges.

@@ -108,7 +108,7 @@ static int run(int argc, char** argv)
             const double delta = m * dx, theta = a_deg * pi / 180;
             const pd::Body<2> body = rotated_plate(L, dx, theta);
             pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv)});
-            const auto keep = pd::crack::symmetric(pd::cut_by_segment(body, {{-dx, L / 2}}, {{a0, L / 2}}));
+            const auto keep = pd::cut_by_segment(body, {{-dx, L / 2}}, {{a0, L / 2}});
             pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
 
             // 3.-4. Traction layers 1.4 dx deep (at least one node row at any rotation, exactly one at

@@ -85,7 +85,7 @@ static int run(int argc, char** argv)
         const pd::Body<2> body = pd::box<2>({{0, 0}}, {{L, H}}, dx);
         pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv)});
         for (double y : {y_up, y_low}) {
-            const auto keep = pd::crack::symmetric(pd::cut_by_segment(body, {{-dx, y}}, {{a0, y}}));
+            const auto keep = pd::cut_by_segment(body, {{-dx, y}}, {{a0, y}});
             pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
         }
 

@@ -79,17 +79,9 @@ RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat
     return info;
 }
 
-// A bond filter made exactly symmetric by always asking for (min(i, j), max(i, j)): the segment
-// test of precrack.hpp can differ between i-j and j-i by round-off when a bond passes through the
-// crack's end point (a lattice diagonal through the tip of a mid-cell pre-crack).
-inline std::function<bool(int, int)> symmetric(std::function<bool(int, int)> keep)
-{
-    return [keep = std::move(keep)](int i, int j) { return i < j ? keep(i, j) : keep(j, i); };
-}
-
 // Pre-crack as broken bonds (intact = 0 where cut(i, j), i.e. the bond crosses the crack), so
 // that phi counts them (spec/002 sec. 3.5, seed 001: the 0.41 contour hugs the pre-crack); returns
-// the number of ordered bonds broken. cut(i, j) must be symmetric (see symmetric()).
+// the number of ordered bonds broken. cut(i, j) must be symmetric (precrack.hpp evaluates (min, max) for both orders).
 inline long break_bonds(Bonds& bonds, const std::function<bool(int, int)>& cut)
 {
     if (!bonds.has_damage()) bonds.enable_damage();

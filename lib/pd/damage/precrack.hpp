@@ -1,8 +1,11 @@
 // Pre-cracks as cut bonds: a bond filter (BondOptions::keep) that drops every bond whose
-// segment x_i - x_j crosses a crack: a segment in 2D, a planar rectangle in 3D.
+// segment x_i - x_j crosses a crack: a segment in 2D, a planar rectangle in 3D. The test is
+// evaluated for (min(i, j), max(i, j)), so i-j and j-i get the same answer bit for bit (a bond
+// through the crack's end point could otherwise differ by round-off and leave a one-sided bond).
 #pragma once
 #include "pd/lattice.hpp"
 
+#include <algorithm>
 #include <functional>
 
 namespace pd {
@@ -14,7 +17,7 @@ inline std::function<bool(int, int)> cut_by_segment(const Body<2>& body, Vec<2> 
         return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
     };
     return [&body, a, b, orient](int i, int j) {
-        const Vec<2> p = body.x[i], q = body.x[j];
+        const Vec<2> p = body.x[std::min(i, j)], q = body.x[std::max(i, j)];  // same arithmetic for i-j and j-i
         const double d1 = orient(a, b, p), d2 = orient(a, b, q), d3 = orient(p, q, a), d4 = orient(p, q, b);
         const bool cross = ((d1 <= 0 && d2 >= 0) || (d1 >= 0 && d2 <= 0)) && ((d3 <= 0 && d4 >= 0) || (d3 >= 0 && d4 <= 0));
         return !cross;
@@ -26,7 +29,7 @@ inline std::function<bool(int, int)> cut_by_rectangle(const Body<3>& body, Vec<3
 {
     const Vec<3> n{{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]}};
     return [&body, corner, e1, e2, n](int i, int j) {
-        const Vec<3> p = body.x[i], q = body.x[j];
+        const Vec<3> p = body.x[std::min(i, j)], q = body.x[std::max(i, j)];  // same arithmetic for i-j and j-i
         const double dp = dot(p - corner, n), dq = dot(q - corner, n);
         if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0) || dp == dq) return true;  // same side or parallel
         const Vec<3> hit = p + (dp / (dp - dq)) * (q - p);
