@@ -127,8 +127,9 @@ void expect_same_as_scratch(const Body<D>& body, const Broken& broken, Make make
     internal_force(ms, scratch, y, fs);
     expect_fields_near(fd, fs, "force");
     extra(md, ms);
-    if (lonely >= 0)
+    if (lonely >= 0) {
         for (int d = 0; d < D; ++d) EXPECT_EQ(fd.c[d][lonely], 0.0) << "isolated node";
+    }
 }
 
 // A plane of broken bonds at x = 4 dx (between node layers): moving half B (x > cut) rigidly leaves the forces on half

@@ -47,11 +47,15 @@ void polynomial_fields(double m, double measure)
         for (std::size_t i = 0; i < body.size(); ++i) {
             // The gradient is exact at every node, surface nodes included (any family spanning D dims).
             EXPECT_NEAR(model.g[i](0), 200, 1e-9 * 200) << "D " << D << " node " << i;
-            if (deep_interior(body, i, n, dx, m * dx)) EXPECT_NEAR(Q[i], 0, 1e-9 * k * 200 / dx);
+            if (deep_interior(body, i, n, dx, m * dx)) {
+                EXPECT_NEAR(Q[i], 0, 1e-9 * k * 200 / dx);
+            }
         }
         pd::heat_flow(model, bonds, quad, Q);
         for (std::size_t i = 0; i < body.size(); ++i)
-            if (deep_interior(body, i, n, dx, m * dx)) EXPECT_NEAR(Q[i], k, 1e-8 * k) << "D " << D << " C_hg " << C;
+            if (deep_interior(body, i, n, dx, m * dx)) {
+                EXPECT_NEAR(Q[i], k, 1e-8 * k) << "D " << D << " C_hg " << C;
+            }
     }
 }
 

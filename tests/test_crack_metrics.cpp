@@ -125,13 +125,17 @@ TEST(CrackMetrics, TipHistorySpeedAndInitiation)
     EXPECT_TRUE(std::isnan(exact.time_at_advance(1.0)));
     // Windows that lie wholly after t0 give v to round-off (1e-9 relative).
     for (const SpeedSample& s : exact.speed(window))
-        if (s.t - window / 2 >= t0) EXPECT_NEAR(s.v, v, 1e-9 * v);
+        if (s.t - window / 2 >= t0) {
+            EXPECT_NEAR(s.v, v, 1e-9 * v);
+        }
     EXPECT_NEAR(exact.max_speed(window), v, 1e-9 * v);
     EXPECT_NEAR(exact.mean_speed(window, t0, 30e-6), v, 1e-9 * v);
     // Quantised tip: each window end is off by less than h, so |V - v| < h / window = 500 m/s, and
     // the mean over 24 us (24 mm of advance) is off by less than h / 24 us = 42 m/s.
     for (const SpeedSample& s : stepped.speed(window))
-        if (s.t - window / 2 >= t0) EXPECT_LT(std::abs(s.v - v), h / window);
+        if (s.t - window / 2 >= t0) {
+            EXPECT_LT(std::abs(s.v - v), h / window);
+        }
     EXPECT_LT(std::abs(stepped.mean_speed(window, t0, 30e-6) - v), h / 24e-6);
 }
 

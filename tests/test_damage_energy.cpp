@@ -123,6 +123,8 @@ TEST(DamageModels, LPSLargestEigenvalueAfterDamage)
         std::printf("LPS, %d %% of the pairs broken: lambda_max / undamaged = %.4f (intact rule), %.4f (reference rule)\n",
                     percent, lambda[0] / lambda0, lambda[1] / lambda0);
         EXPECT_GT(lambda[0], lambda[1]);
-        if (percent == 20) EXPECT_LT(lambda[0], 1.1 * lambda0);
+        if (percent == 20) {
+            EXPECT_LT(lambda[0], 1.1 * lambda0);
+        }
     }
 }

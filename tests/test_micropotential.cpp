@@ -70,7 +70,9 @@ TEST(Micropotential, PlaneCutEnergyConvergesToJc)
                     if (a * a + b * b + c * c <= m * m) sum += a;
         const double energy = w_critical(Jc_si3n4, delta) * std::pow(dx, 4) * sum;  // [J/m^2]
         EXPECT_LT(std::abs(energy / Jc_si3n4 - 1), 0.5 / m) << "m = " << m;
-        if (m > 20) EXPECT_LT(std::abs(energy / Jc_si3n4 - 1), 0.005);
+        if (m > 20) {
+            EXPECT_LT(std::abs(energy / Jc_si3n4 - 1), 0.005);
+        }
     }
 }
 
@@ -131,7 +133,7 @@ double first_break_strain(double h, double ds, double ratio = 1, double s0 = 0)
     CriticalMicropotential<3> mp;
     mp.w_c = w_critical(Jc_si3n4, b.delta);
     if (ratio != 1) mp.jc_ratio.assign(body.size(), ratio);
-    CriticalStretch cs{s0, {}};
+    CriticalStretch cs{.s0 = s0, .s0_bond = {}, .no_fail = {}};
     Field<3> y = body.x, f;
     for (int n = 0; n < 100000; ++n) {
         const double s = n * ds;
@@ -141,7 +143,9 @@ double first_break_strain(double h, double ds, double ratio = 1, double s0 = 0)
         if (broke > 0) {
             if (s0 == 0)  // micropotential: only the longest bonds go first
                 for (std::size_t k = 0; k < b.size(); ++k)
-                    if (!b.intact[k]) EXPECT_NEAR(b.length[k], 3 * h, 1e-9 * h);
+                    if (!b.intact[k]) {
+                        EXPECT_NEAR(b.length[k], 3 * h, 1e-9 * h);
+                    }
             return s0 > 0 ? s : s - ds;  // micropotential: w of the previous step reached w_C
         }
         if (s0 > 0) continue;

@@ -104,7 +104,7 @@ static int run(int argc, char** argv)
         if (std::lround(H / dx) < 2 * m + 2) opt.fail("option --dx-list: dx too coarse for the plate height");
         const pd::Body<2> body = pd::box<2>({{0, 0}}, {{L, H}}, dx);
         const pd::Vec<2> origin{{0, H / 2}}, dir{{1, 0}};
-        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv)});
+        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
         const auto keep = pd::cut_by_segment(body, {{-dx, H / 2}}, {{a0, H / 2}});
         pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
 

@@ -107,7 +107,7 @@ static int run(int argc, char** argv)
             // 2. Discretisation and pre-crack.
             const double delta = m * dx, theta = a_deg * pi / 180;
             const pd::Body<2> body = rotated_plate(L, dx, theta);
-            pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv)});
+            pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
             const auto keep = pd::cut_by_segment(body, {{-dx, L / 2}}, {{a0, L / 2}});
             pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
 

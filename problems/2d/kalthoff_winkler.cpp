@@ -83,7 +83,7 @@ static int run(int argc, char** argv)
         const double dx = dxs[q], delta = m * dx;
         if (std::lround(y_low / dx) < 2 * m) opt.fail("option --dx-list: dx too coarse for the ligaments");
         const pd::Body<2> body = pd::box<2>({{0, 0}}, {{L, H}}, dx);
-        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv)});
+        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
         for (double y : {y_up, y_low}) {
             const auto keep = pd::cut_by_segment(body, {{-dx, y}}, {{a0, y}});
             pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });

@@ -79,7 +79,7 @@ std::pair<double, double> fracture_time(const Material& p, double delta, double 
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, left, d, pd::TimeFunction::ramp(-g, t_max)});
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, right, d, pd::TimeFunction::ramp(g, t_max)});
     }
-    pd::CriticalStretch cs{pd::s0_madenci_oterkus_3d(p.Gc, p.mat, delta), {}};
+    pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(p.Gc, p.mat, delta), .s0_bond = {}, .no_fail = {}};
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(p.Gc, delta);
     cs.protect(protect, body.size());

@@ -73,7 +73,7 @@ Result run_case(const Setup& s, const std::string& name, const std::string& dama
     auto& model = *holder;
     using Model = std::remove_reference_t<decltype(model)>;
     pd::Explicit<3, Model> ex(s.body, bonds, model, s.rho);
-    pd::CriticalStretch cs{pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta), {}};
+    pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta), .s0_bond = {}, .no_fail = {}};
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(s.Gc, s.delta);
     cs.protect(s.protect, s.body.size());

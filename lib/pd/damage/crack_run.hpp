@@ -61,7 +61,7 @@ RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat
     const double dt_bound = std::min(dt_max, safety * info.dt_crit);
     info.steps = static_cast<long>(std::ceil(t_end / dt_bound * (1 - 1e-12)));  // 1e-12: t_end a multiple of dt_bound
     info.dt = t_end / info.steps;
-    CriticalStretch damage{.s0 = info.s0, .no_fail = {}};
+    CriticalStretch damage{.s0 = info.s0, .s0_bond = {}, .no_fail = {}};
     if (!no_fail.empty()) damage.protect(no_fail, body.size());
     Explicit<2, PMB> sim(body, bonds, model, mat.rho);
     sim.boundary = boundary;
