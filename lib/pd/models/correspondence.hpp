@@ -497,7 +497,7 @@ private:
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
-            if constexpr (fast) N = deformation_sum(b, i);
+            if constexpr (fast) N = this->deformation_sum(b, i);  // this->: dependent, so a build without AVX2 never looks it up
             else family_sums<Damaged, Damaged, 1>(b, i, {&y}, &N, &K, &m);
             if constexpr (Damaged) {
                 Kinv[i] = inverse_or_zero(K);
