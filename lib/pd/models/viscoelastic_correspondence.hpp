@@ -22,6 +22,7 @@
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
+#include "pd/laws/elastic.hpp"
 #include "pd/laws/maxwell.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/load_step.hpp"
@@ -74,7 +75,7 @@ public:
         const double k_b = 2 * model.par.material.G * gamma_b;  // branch modulus 2 G_b [Pa]
         parallel_for(y.size(), [&](std::size_t i) {
             const Mat& sh = model.sigma_hat[i];
-            s_hat[i] = sh - sh.trace() / 3 * Mat::Identity();                                  // deviator
+            s_hat[i] = laws::deviator(sh);  // step 2: s_hat = dev(sigma_hat)
             q[i] = laws::maxwell_update<Mat>(q_c_[i], gamma_b * s_hat_c_[i], gamma_b * s_hat[i], c);  // (7.19)
             model.sigma[i] = model.R[i] * (sh + gamma_b * s_hat[i] - q[i]) * model.R[i].transpose();  // (7.16), (7.29)
             // Dissipation in stress units: (1/k_b) int r_sigma:r_sigma dt / tau_b, r_sigma = k_b (x - h).
