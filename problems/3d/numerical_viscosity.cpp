@@ -23,6 +23,7 @@
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
+#include "pd/measure/shear_cube.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"
 #include "pd/models/viscoelastic_lps.hpp"
 #include "pd/models/viscoelastic_numerical.hpp"
@@ -30,7 +31,6 @@
 #include "reference/lps_shear.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -41,16 +41,6 @@
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-// y = (I + (gamma/2)(e_x e_y + e_y e_x)) x [m].
-void shear(const pd::Body<3>& body, double gamma, pd::Field<3>& y)
-{
-    y = body.x;
-    for (std::size_t i = 0; i < body.size(); ++i) {
-        y.c[0][i] += 0.5 * gamma * body.x.c[1][i];
-        y.c[1][i] += 0.5 * gamma * body.x.c[0][i];
-    }
-}
 
 struct Response { std::complex<double> lps, corr; };  // complex stiffness over the elastic one [-]
 
@@ -137,18 +127,10 @@ int run(int argc, char** argv)
     // 3. Discretisation and models: cube, centre node c and its bond kc of largest |e_d|.
     const pd::Body<3> body = pd::box<3>({{0, 0, 0}}, {{n * dx, n * dx, n * dx}}, dx);
     const pd::Bonds bonds = pd::build_bonds(body, opt.get("delta"));
-    auto dist = [&](std::size_t i) {
-        double s = 0;
-        for (int d = 0; d < 3; ++d) s += std::abs(body.x.c[d][i] - 0.5 * n * dx);
-        return s;
-    };
-    std::size_t c = 0;
-    for (std::size_t i = 1; i < body.size(); ++i)
-        if (dist(i) < dist(c)) c = i;
+    const std::size_t c = pd::node_nearest_diagonal_point(body, 0.5 * n * dx);
     // alpha, e_d by hand (reference/lps_shear.hpp); the elastic t_d amplitude alpha omega e_d of the bond
     // of largest |e_d|, odd part in gamma0 (the projection keeps it; omega = 1).
-    std::vector<std::array<double, 3>> pts(body.size());
-    for (std::size_t i = 0; i < body.size(); ++i) pts[i] = {body.x.c[0][i], body.x.c[1][i], body.x.c[2][i]};
+    const auto pts = pd::point_list(body);
     const auto fp = pd::ref::lps_shear_family(pts, body.volume, static_cast<int>(c), bonds.delta, mat.G, g0);
     const auto fm = pd::ref::lps_shear_family(pts, body.volume, static_cast<int>(c), bonds.delta, mat.G, -g0);
     std::size_t q_max = 0;
@@ -169,7 +151,7 @@ int run(int argc, char** argv)
         pd::Field<3> y, f;
         for (long s = 1; s <= static_cast<long>(transient + periods) * N; ++s) {
             const double ph = 2 * pi * static_cast<double>(s % N) / N;
-            shear(body, g0 * std::sin(ph), y);
+            y = pd::sheared(body, g0 * std::sin(ph));
             lps.set_time_step(dt), corr.set_time_step(dt);
             pd::internal_force(lps, bonds, y, f);
             pd::internal_force(corr, bonds, y, f);

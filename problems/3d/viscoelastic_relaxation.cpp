@@ -21,6 +21,7 @@
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
+#include "pd/measure/shear_cube.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"
 #include "pd/models/viscoelastic_lps.hpp"
 #include "reference/lps_shear.hpp"
@@ -32,17 +33,6 @@
 #include <iostream>
 
 namespace {
-
-// y = (I + eps (e_x e_y + e_y e_x)) x, eps = gamma/2 [m].
-pd::Field<3> sheared(const pd::Body<3>& body, double gamma)
-{
-    pd::Field<3> y = body.x;
-    for (std::size_t i = 0; i < body.size(); ++i) {
-        y.c[0][i] += 0.5 * gamma * body.x.c[1][i];
-        y.c[1][i] += 0.5 * gamma * body.x.c[0][i];
-    }
-    return y;
-}
 
 // alpha, theta and e_d of bond k of node i under the shear gamma, from the hand-written family sums
 // of reference/lps_shear.hpp (its own neighbour search, not pd::Bonds).
@@ -101,13 +91,8 @@ int run(int argc, char** argv)
     // 2. Discretisation: cube, families; centre node and its bond of largest |e_d| under the shear.
     const pd::Body<3> body = pd::box<3>({{0, 0, 0}}, {{n * dx, n * dx, n * dx}}, dx);
     const pd::Bonds bonds = pd::build_bonds(body, opt.get("m") * dx);
-    std::size_t c = 0;
-    for (std::size_t i = 0; i < body.size(); ++i)
-        if (std::abs(body.x.c[0][i] - 0.5 * n * dx) + std::abs(body.x.c[1][i] - 0.5 * n * dx) + std::abs(body.x.c[2][i] - 0.5 * n * dx) <
-            std::abs(body.x.c[0][c] - 0.5 * n * dx) + std::abs(body.x.c[1][c] - 0.5 * n * dx) + std::abs(body.x.c[2][c] - 0.5 * n * dx))
-            c = i;
-    Points pts(body.size());
-    for (std::size_t i = 0; i < body.size(); ++i) pts[i] = {body.x.c[0][i], body.x.c[1][i], body.x.c[2][i]};
+    const std::size_t c = pd::node_nearest_diagonal_point(body, 0.5 * n * dx);
+    const Points pts = pd::point_list(body);
     std::int64_t kc = bonds.begin(c);
     for (std::int64_t k = bonds.begin(c); k < bonds.end(c); ++k)
         if (std::abs(hand_lps(pts, body, bonds, c, k, g0, G).ed) > std::abs(hand_lps(pts, body, bonds, c, kc, g0, G).ed)) kc = k;
@@ -134,7 +119,7 @@ int run(int argc, char** argv)
         for (long s = 0; s <= steps; ++s) {
             const double t = s * dt, step_dt = s == 0 ? 0.0 : dt;
             const double g = is_ramp ? g0 * std::min(t / t1, 1.0) : g0;  // engineering shear at t [-]
-            const pd::Field<3> y = sheared(body, g);
+            const pd::Field<3> y = pd::sheared(body, g);
             lps.set_time_step(step_dt), corr.set_time_step(step_dt);
             pd::internal_force(lps, bonds, y, f);
             pd::internal_force(corr, bonds, y, f);

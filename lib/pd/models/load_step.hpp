@@ -13,6 +13,8 @@
 //      and d dt = mid-point approximation of the logarithmic strain increment, error O(de^3)),
 //   3. calls the model's point_pass at y (F, P = J sigma F^-T, P K^-1);
 // commit(bonds, y) at convergence evaluates at y and stores the state as the new committed one.
+// advance (steps 1-2) and accept (store) serve a model that acts between steps 2 and 3
+// (models/viscoelastic_correspondence.hpp).
 // Uses only the model's public interface: update_stress, point_pass, bond_force / bond_scalar and
 // the state vectors sigma_hat, R, V. Works with any Model exposing these (D = 3 for Flanagan-Taylor).
 #pragma once
@@ -39,6 +41,13 @@ public:
     // Trial evaluation at y (steps 1-3 of the header).
     void point_pass(const Bonds& b, const Field<D>& y)
     {
+        advance(b, y);
+        model.point_pass(b, y);
+    }
+
+    // Steps 1-2 only: the model's sigma_hat, R, V (and sigma) advanced from the committed state to y.
+    void advance(const Bonds& b, const Field<D>& y)
+    {
         if (y.size() != y_c_.size()) throw std::invalid_argument("LoadStep: configuration size differs from the committed one");
         model.sigma_hat = sigma_hat_c_;
         model.R = R_c_;
@@ -51,13 +60,18 @@ public:
                 v_.c[d][i] = y.c[d][i] - y_c_.c[d][i];            // velocity over dt = 1 [m per unit pseudo time]
             }
         model.update_stress(b, y_m_, v_, 1.0);
-        model.point_pass(b, y);
     }
 
     // Ends the load step at y: the state evaluated at y becomes the committed state.
     void commit(const Bonds& b, const Field<D>& y)
     {
         point_pass(b, y);
+        accept(y);
+    }
+
+    // The model's present state (last evaluated at y) becomes the committed state.
+    void accept(const Field<D>& y)
+    {
         y_c_ = y;
         store();
     }

@@ -57,20 +57,18 @@ struct PlasticLPS {
         const double G = lps.G;
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double th = lps.theta[i] / 3;
-            auto e_de = [&](std::int64_t k) {
-                const int j = b.partner[k];
-                double Y2 = 0;
-                for (int d = 0; d < 3; ++d) { const double Yd = y.c[d][j] - y.c[d][i]; Y2 += Yd * Yd; }
-                return std::sqrt(Y2) - b.length[k] * (1 + th) - edp_c[k];
-            };
             double sum = 0;  // sum omega e_de^2 V [m^5]
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) { const double e = e_de(k); sum += lps.wV[k] * e * e; }
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                const double e = deviatoric_extension(b, y, i, k, th, edp_c);
+                tdev[k] = e;  // e_de until the return below
+                sum += lps.wV[k] * e * e;
+            }
             const double trial = std::sqrt(6 * G * 0.5 * lps.alpha[i] * sum);  // sqrt(6 G W_d) (5.36)
             const laws::ScalarReturn r = pts.scalar_return(i, G, trial);
             const double scale = r.plastic ? r.sigma_eff / trial : 1.0;             // (5.46)
             const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;        // (5.40)
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const double e = e_de(k);
+                const double e = tdev[k];
                 tdev[k] = lps.alpha[i] * scale * e;
                 edp[k] = edp_c[k] + flow * e;
             }

@@ -58,15 +58,10 @@ struct PlasticPALS {
         const double G = pals.G;
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double th = pals.theta[i] / 3;
-            auto e_de = [&](std::int64_t k) {
-                const int j = b.partner[k];
-                double Y2 = 0;
-                for (int d = 0; d < 3; ++d) { const double Yd = y.c[d][j] - y.c[d][i]; Y2 += Yd * Yd; }
-                return std::sqrt(Y2) - b.length[k] * (1 + th) - edp_c[k];
-            };
             double wd = 0, sx = 0;  // 2 W_d = sum 2G sigma e_de^2 V [Pa]; sum 2G sigma |xi| e_de V [Pa]
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const double e = e_de(k);
+                const double e = deviatoric_extension(b, y, i, k, th, edp_c);
+                t[k] = e;  // e_de until the return below
                 wd += pals.s_i[k] * e * e;
                 sx += pals.s_i[k] * b.length[k] * e;
             }
@@ -76,7 +71,7 @@ struct PlasticPALS {
             const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;   // (5.58)
             const double P = pals.K * pals.theta[i] - scale * sx / 3;            // K theta - (2G/3)(sigma x)•e_de_np1
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const double e = e_de(k);
+                const double e = t[k];
                 t[k] = (P * pals.w_i[k] * b.length[k] + scale * pals.s_i[k] * e) / b.volume[k];  // (4.21)
                 edp[k] = edp_c[k] + flow * e;
             }

@@ -6,10 +6,14 @@
 // accumulation over solver iterations); commit() makes the trial history the committed one.
 // Dissipated power (spec/000b eqs. 5.22-5.23, 5.51): p_i = beta_TQ sigma_y dlambda / dt [W/m^3],
 // the heat source of a thermo-mechanical scene (heat_source, after point_pass).
+// Also the trial deviatoric bond extension e_de of the two ordinary models (LPS, PALS).
 #pragma once
+#include "pd/bonds.hpp"
+#include "pd/field.hpp"
 #include "pd/laws/j2.hpp"
 #include "pd/laws/johnson_cook.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -62,5 +66,16 @@ struct PlasticPoints {
     }
     void commit() { ep_c = ep; }
 };
+
+// Trial deviatoric extension of bond k (i -> j) of the ordinary plastic models (plastic_lps.hpp,
+// plastic_pals.hpp): e_de = |Y| - |xi| (1 + theta_i/3) - e_dp_c [m]; th = theta_i/3 [-].
+inline double deviatoric_extension(const Bonds& b, const Field<3>& y, std::size_t i, std::int64_t k, double th,
+                                   const std::vector<double>& edp_c)
+{
+    const int j = b.partner[k];
+    double Y2 = 0;
+    for (int d = 0; d < 3; ++d) { const double Yd = y.c[d][j] - y.c[d][i]; Y2 += Yd * Yd; }
+    return std::sqrt(Y2) - b.length[k] * (1 + th) - edp_c[k];
+}
 
 }  // namespace pd

@@ -15,14 +15,17 @@
 // History protocol (as models/viscoelastic_lps.hpp): set_time_step(dt), point_pass(bonds, y) = trial
 // state at y from the committed state (sigma_hat, R, V, q, s_hat, configuration y_c; no accumulation),
 // commit() after each accepted step (time/verlet.hpp calls both). The Flanagan-Taylor update runs over
-// the step from y_c to y as in models/load_step.hpp: mid-step configuration (y_c + y)/2 and velocity
-// (y - y_c) over a pseudo step 1 (the update depends on v dt only); dt enters only the Maxwell branch.
+// the step from y_c to y by models/load_step.hpp (LoadStep::advance): mid-step configuration
+// (y_c + y)/2 and velocity (y - y_c) over a pseudo step 1 (the update depends on v dt only); dt
+// enters only the Maxwell branch.
 // Uses only the public members of Correspondence<3>; it does not copy its loops.
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
+#include "pd/laws/elastic.hpp"
 #include "pd/laws/maxwell.hpp"
 #include "pd/models/correspondence.hpp"
+#include "pd/models/load_step.hpp"
 #include "pd/parallel.hpp"
 
 #include <stdexcept>
@@ -49,14 +52,13 @@ public:
     // y0: the configuration the model's present state belongs to (usually the reference x) [m].
     ViscoelasticCorrespondence(Model& m, const Params& p, const Field<3>& y0)
         : model(m), gamma_b(p.gamma_b), tau_b(p.tau_b), q(m.F.size(), Mat::Zero()), s_hat(m.F.size(), Mat::Zero()),
-          dissipation(m.F.size(), 0.0), y_c_(y0), y_t_(y0)
+          dissipation(m.F.size(), 0.0), step_(m, y0), y_t_(y0)
     {
         if (m.par.law != Model::Law::flanagan_taylor) throw std::invalid_argument("ViscoelasticCorrespondence: needs Law::flanagan_taylor");
         if (!(p.gamma_b >= 0)) throw std::invalid_argument("ViscoelasticCorrespondence: gamma_b must be >= 0");
         if (!(p.tau_b > 0)) throw std::invalid_argument("ViscoelasticCorrespondence: tau_b must be positive");
         if (y0.size() != m.F.size()) throw std::invalid_argument("ViscoelasticCorrespondence: configuration size differs from the model");
         q_c_ = q, s_hat_c_ = s_hat;
-        sigma_hat_c_ = model.sigma_hat, R_c_ = model.R, V_c_ = model.V;
     }
 
     void set_time_step(double step)
@@ -68,21 +70,12 @@ public:
     // Trial state at y (steps 1-5 of the header).
     void point_pass(const Bonds& b, const Field<3>& y)
     {
-        if (y.size() != y_c_.size()) throw std::invalid_argument("ViscoelasticCorrespondence: configuration size differs");
-        model.sigma_hat = sigma_hat_c_, model.R = R_c_, model.V = V_c_;
-        y_m_.resize(y.size());
-        v_.resize(y.size());
-        for (int d = 0; d < 3; ++d)
-            for (std::size_t i = 0; i < y.size(); ++i) {
-                y_m_.c[d][i] = 0.5 * (y_c_.c[d][i] + y.c[d][i]);  // mid-step configuration [m]
-                v_.c[d][i] = y.c[d][i] - y_c_.c[d][i];            // velocity over the pseudo step 1 [m]
-            }
-        model.update_stress(b, y_m_, v_, 1.0);
+        step_.advance(b, y);  // step 1
         const laws::MaxwellCoefficients c = laws::maxwell_coefficients(dt, tau_b);
         const double k_b = 2 * model.par.material.G * gamma_b;  // branch modulus 2 G_b [Pa]
         parallel_for(y.size(), [&](std::size_t i) {
             const Mat& sh = model.sigma_hat[i];
-            s_hat[i] = sh - sh.trace() / 3 * Mat::Identity();                                  // deviator
+            s_hat[i] = laws::deviator(sh);  // step 2: s_hat = dev(sigma_hat)
             q[i] = laws::maxwell_update<Mat>(q_c_[i], gamma_b * s_hat_c_[i], gamma_b * s_hat[i], c);  // (7.19)
             model.sigma[i] = model.R[i] * (sh + gamma_b * s_hat[i] - q[i]) * model.R[i].transpose();  // (7.16), (7.29)
             // Dissipation in stress units: (1/k_b) int r_sigma:r_sigma dt / tau_b, r_sigma = k_b (x - h).
@@ -95,8 +88,7 @@ public:
     // The trial state becomes the committed one.
     void commit()
     {
-        y_c_ = y_t_;
-        sigma_hat_c_ = model.sigma_hat, R_c_ = model.R, V_c_ = model.V;
+        step_.accept(y_t_);
         q_c_ = q, s_hat_c_ = s_hat;
     }
 
@@ -110,8 +102,9 @@ public:
     Mat viscous_stress(std::size_t i) const { return gamma_b * s_hat[i] - q[i]; }
 
 private:
-    Field<3> y_c_, y_t_, y_m_, v_;
-    std::vector<Mat> sigma_hat_c_, R_c_, V_c_, q_c_, s_hat_c_;
+    LoadStep<Model, 3> step_;  // committed sigma_hat, R, V and configuration y_c
+    Field<3> y_t_;             // configuration of the trial state [m]
+    std::vector<Mat> q_c_, s_hat_c_;
 };
 
 }  // namespace pd
