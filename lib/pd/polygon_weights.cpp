@@ -84,7 +84,23 @@ double star_shape_overlap(const Vec<2>& centre, const Ring& star, const Polygon&
     return std::max(area, 0.0);  // the exact sum is >= 0; round-off only
 }
 
-PolygonBody polygon_body(const Polygon& shape, double dx, double thickness, bool correct)
+WeightRule parse_weight_rule(const std::string& name)
+{
+    if (name == "none") return WeightRule::none;
+    if (name == "seed001") return WeightRule::seed001;
+    if (name == "shared-quarters") return WeightRule::shared_quarters;
+    throw std::invalid_argument("unknown weight rule '" + name + "' (none, seed001, shared-quarters)");
+}
+
+namespace {
+double square_overlap(const Vec<2>& centre, double half, const Polygon& shape)  // area(square cap shape) [m^2]
+{
+    const Ring sq{centre + Vec<2>{{half, -half}}, centre + Vec<2>{{half, half}}, centre + Vec<2>{{-half, half}}, centre + Vec<2>{{-half, -half}}};
+    return star_shape_overlap(centre, sq, shape);
+}
+}  // namespace
+
+PolygonBody polygon_body(const Polygon& shape, double dx, double thickness, WeightRule rule)
 {
     if (!(dx > 0)) throw std::invalid_argument("polygon_body: dx must be positive");
     if (shape.outer.size() < 3) throw std::invalid_argument("polygon_body: the outer ring needs 3 vertices");
@@ -118,7 +134,7 @@ PolygonBody polygon_body(const Polygon& shape, double dx, double thickness, bool
     // Step 5: weights. The 8 perimeter directions in counter-clockwise order from +x.
     constexpr std::array<std::array<int, 2>, 8> dirs{{{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}}};
     out.weight.assign(N, 1.0);
-    if (correct)
+    if (rule == WeightRule::seed001)
         for (std::size_t i = 0; i < N; ++i) {
             if (!out.edge[i]) continue;
             const Vec<2> c = out.body.x[i];
@@ -128,6 +144,35 @@ PolygonBody polygon_body(const Polygon& shape, double dx, double thickness, bool
                 zone.push_back(c + (f * dx) * Vec<2>{{double(d[0]), double(d[1])}});
             }
             out.weight[i] = star_shape_overlap(c, zone, shape) / (dx * dx);
+        }
+    if (rule == WeightRule::shared_quarters)
+        for (std::size_t i = 0; i < N; ++i) {
+            const auto [a, b] = ij[i];
+            bool all8 = true;
+            for (const auto& d : dirs) all8 = all8 && occupied(a + d[0], b + d[1]);
+            if (all8) continue;
+            const Vec<2> c = out.body.x[i];
+            double area = square_overlap(c, dx / 2, shape);  // own cell cap shape
+            for (const auto& d : dirs) {
+                if (occupied(a + d[0], b + d[1])) continue;
+                const long pa = a + d[0], pb = b + d[1];  // empty cell p
+                for (int sx : {-1, 1})
+                    for (int sy : {-1, 1}) {
+                        // Quarter of p toward (sx, sy); claimants: object nodes among p + (sx, 0), (0, sy), (sx, sy).
+                        const long cand[3][2] = {{pa + sx, pb}, {pa, pb + sy}, {pa + sx, pb + sy}};
+                        int claimants = 0;
+                        bool mine = false;
+                        for (const auto& q : cand)
+                            if (occupied(q[0], q[1])) {
+                                ++claimants;
+                                mine = mine || (q[0] == a && q[1] == b);
+                            }
+                        if (!mine) continue;
+                        const Vec<2> qc = c + Vec<2>{{(d[0] + 0.25 * sx) * dx, (d[1] + 0.25 * sy) * dx}};
+                        area += square_overlap(qc, dx / 4, shape) / claimants;
+                    }
+            }
+            out.weight[i] = area / (dx * dx);
         }
     for (std::size_t i = 0; i < N; ++i) out.body.volume[i] *= out.weight[i];
     return out;

@@ -17,6 +17,7 @@
 #include "pd/lattice.hpp"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pd {
@@ -38,10 +39,19 @@ struct PolygonBody {
     std::vector<double> weight;      // material volume coefficient [-]; 1 for interior nodes
 };
 
+// Weight rules: `none` every weight 1 (uncorrected volumes); `seed001` the source's zones (above);
+// `shared_quarters` (ours, the source's stated intent "split overlapping zones in half" made exact):
+// the plane is cut into quarter cells of side dx/2; a node owns its cell cap shape, and each
+// quarter of a cell without node (centre outside the shape) goes in equal shares to the object
+// nodes among the three cells that touch it at the quarter's inner corner. Zones never overlap, so
+// no area is counted twice; only shape parts in quarters with no claimant are lost. Nodes whose 8
+// neighbours are all object nodes keep weight 1 under every rule.
+enum class WeightRule { none, seed001, shared_quarters };
+WeightRule parse_weight_rule(const std::string& name);  // "none" | "seed001" | "shared-quarters"; throws otherwise
+
 // Seed 001 steps 3-5: lattice of spacing dx over the shape's bounding box starting at its lower
-// left corner + (dx/2, dx/2); nodes inside the shape (even-odd rule); isEdge; weights. With
-// `correct` false every weight is 1 (the uncorrected volumes). Throws std::invalid_argument when
-// dx <= 0 or the shape holds no node.
-PolygonBody polygon_body(const Polygon& shape, double dx, double thickness = 1, bool correct = true);
+// left corner + (dx/2, dx/2); nodes inside the shape (even-odd rule); isEdge; weights by `rule`.
+// Throws std::invalid_argument when dx <= 0 or the shape holds no node.
+PolygonBody polygon_body(const Polygon& shape, double dx, double thickness = 1, WeightRule rule = WeightRule::seed001);
 
 }  // namespace pd
