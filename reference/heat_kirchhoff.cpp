@@ -1,5 +1,6 @@
 // reference/heat_kirchhoff.cpp -- see heat_kirchhoff.hpp.
 #include "reference/heat_kirchhoff.hpp"
+#include "reference/heat_cvode_session.hpp"
 
 #include <cvode/cvode.h>
 #include <gsl/gsl_errno.h>
@@ -187,43 +188,29 @@ KBarResult kbar_transient(const KBar1D& bar, int n, double t_end, double rtol, d
     const bool cross = T_target > std::min(bar.T0, bar.T_end) && T_target < std::max(bar.T0, bar.T_end);
     Mol m{&bar, n, bar.L / n, std::vector<double>(n), std::vector<double>(n), std::vector<double>(n),
           std::vector<double>(n), std::vector<double>(n), std::vector<double>(n)};
-    SUNContext ctx;
-    ok(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
-    N_Vector y = N_VNew_Serial(n, ctx), dky = N_VNew_Serial(n, ctx);
-    std::fill(N_VGetArrayPointer(y), N_VGetArrayPointer(y) + n, bar.T0);
-    SUNLinearSolver LS = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 10, ctx);  // exact preconditioner: 1-2 iterations
-    void* mem = CVodeCreate(CV_BDF, ctx);
+    HeatCvodeSession cv(n, bar.T0, SUN_PREC_LEFT, 10, "kbar_transient");  // exact preconditioner: 1-2 iterations
+    void* mem = cv.mem;
+    N_Vector y = cv.y;
     KBarResult out;
-    try {
-        ok(CVodeInit(mem, mol_rhs, 0.0, y), "CVodeInit");
-        ok(CVodeSetUserData(mem, &m), "CVodeSetUserData");
-        ok(CVodeSStolerances(mem, rtol, rtol * std::abs(bar.T_end - bar.T0)), "CVodeSStolerances");
-        ok(CVodeSetLinearSolver(mem, LS, nullptr), "CVodeSetLinearSolver");
-        ok(CVodeSetPreconditioner(mem, mol_psetup, mol_psolve), "CVodeSetPreconditioner");
-        ok(CVodeSetMaxNumSteps(mem, 10000000), "CVodeSetMaxNumSteps");
-        ok(CVodeSetStopTime(mem, t_end), "CVodeSetStopTime");
-        const double sign = bar.T_end > bar.T0 ? 1 : -1;
-        realtype t = 0;
-        while (t < t_end) {
-            const double t_prev = t;
-            ok(CVode(mem, t_end, y, &t, CV_ONE_STEP), "CVode");
-            ++out.steps;
-            if (!cross || out.t_cross >= 0 || sign * (centre(m, N_VGetArrayPointer(y)) - T_target) < 0) continue;
-            double lo = t_prev, hi = t;  // bisection on the interpolant of the last step
-            while (hi - lo > 1e-13 * t) {
-                const double mid = 0.5 * (lo + hi);
-                ok(CVodeGetDky(mem, mid, 0, dky), "CVodeGetDky");
-                (sign * (centre(m, N_VGetArrayPointer(dky)) - T_target) < 0 ? lo : hi) = mid;
-            }
-            out.t_cross = 0.5 * (lo + hi);
-        }
-        const double* T = N_VGetArrayPointer(y);
-        for (int i = 0; i < n; ++i) out.x.push_back((i + 0.5) * m.h), out.T.push_back(T[i]);
-    } catch (...) {
-        CVodeFree(&mem), SUNLinSolFree(LS), N_VDestroy(y), N_VDestroy(dky), SUNContext_Free(&ctx);
-        throw;
+    ok(CVodeInit(mem, mol_rhs, 0.0, y), "CVodeInit");
+    ok(CVodeSetUserData(mem, &m), "CVodeSetUserData");
+    ok(CVodeSStolerances(mem, rtol, rtol * std::abs(bar.T_end - bar.T0)), "CVodeSStolerances");
+    ok(CVodeSetLinearSolver(mem, cv.LS, nullptr), "CVodeSetLinearSolver");
+    ok(CVodeSetPreconditioner(mem, mol_psetup, mol_psolve), "CVodeSetPreconditioner");
+    ok(CVodeSetMaxNumSteps(mem, 10000000), "CVodeSetMaxNumSteps");
+    ok(CVodeSetStopTime(mem, t_end), "CVodeSetStopTime");
+    const double sign = bar.T_end > bar.T0 ? 1 : -1;
+    auto short_of_target = [&](const double* T) { return sign * (centre(m, T) - T_target) < 0; };
+    realtype t = 0;
+    while (t < t_end) {
+        const double t_prev = t;
+        ok(CVode(mem, t_end, y, &t, CV_ONE_STEP), "CVode");
+        ++out.steps;
+        if (!cross || out.t_cross >= 0 || short_of_target(N_VGetArrayPointer(y))) continue;
+        out.t_cross = cv.crossing(t_prev, t, 1e-13 * t, short_of_target);  // bisection on the interpolant of the last step
     }
-    CVodeFree(&mem), SUNLinSolFree(LS), N_VDestroy(y), N_VDestroy(dky), SUNContext_Free(&ctx);
+    const double* T = N_VGetArrayPointer(y);
+    for (int i = 0; i < n; ++i) out.x.push_back((i + 0.5) * m.h), out.T.push_back(T[i]);
     return out;
 }
 

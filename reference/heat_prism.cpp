@@ -1,5 +1,6 @@
 // reference/heat_prism.cpp -- see heat_prism.hpp.
 #include "reference/heat_prism.hpp"
+#include "reference/heat_cvode_session.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -72,44 +73,30 @@ PrismCrossing heat_prism_time_to(const HeatPrism& p, double T_target, double rto
         throw std::invalid_argument("heat_prism_time_to: target must lie strictly between T0 and T_end");
     Grid g{p, p.alpha * std::pow(p.nx / p.Lx, 2), p.alpha * std::pow(p.ny / p.Ly, 2), p.alpha * std::pow(p.nz / p.Lz, 2)};
     const sunindextype n = sunindextype(p.nx) * p.ny * p.nz;
-    SUNContext ctx;
-    ok(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
-    N_Vector y = N_VNew_Serial(n, ctx), dky = N_VNew_Serial(n, ctx);
-    std::fill(N_VGetArrayPointer(y), N_VGetArrayPointer(y) + n, p.T0);
-    SUNMatrix J = nullptr;                                          // matrix-free
-    SUNLinearSolver LS = SUNLinSol_SPGMR(y, SUN_PREC_NONE, krylov_dim, ctx);
-    void* mem = CVodeCreate(CV_BDF, ctx);
+    HeatCvodeSession cv(n, p.T0, SUN_PREC_NONE, krylov_dim, "heat_prism_time_to");
+    void* mem = cv.mem;
+    N_Vector y = cv.y;
+    SUNMatrix J = nullptr;  // matrix-free
     PrismCrossing out;
-    try {
-        ok(CVodeInit(mem, rhs, 0.0, y), "CVodeInit");
-        ok(CVodeSetUserData(mem, &g), "CVodeSetUserData");
-        ok(CVodeSStolerances(mem, rtol, rtol * std::abs(p.T_end - p.T0)), "CVodeSStolerances");
-        ok(CVodeSetLinearSolver(mem, LS, J), "CVodeSetLinearSolver");  // GMRES, difference-quotient J v
-        ok(CVodeSetMaxNumSteps(mem, 1000000), "CVodeSetMaxNumSteps");
-        ok(CVodeSetStopTime(mem, t_max), "CVodeSetStopTime");
-        const double sign = p.T_end > p.T0 ? 1 : -1;
-        realtype t = 0;
-        bool found = false;
-        while (!found && t < t_max) {
-            const double t_prev = t;
-            ok(CVode(mem, t_max, y, &t, CV_ONE_STEP), "CVode");
-            ++out.steps;
-            if (sign * (centre(g, N_VGetArrayPointer(y)) - T_target) < 0) continue;
-            double lo = t_prev, hi = t;
-            while (hi - lo > 1e-12 * (t - t_prev)) {
-                const double mid = 0.5 * (lo + hi);
-                ok(CVodeGetDky(mem, mid, 0, dky), "CVodeGetDky");
-                (sign * (centre(g, N_VGetArrayPointer(dky)) - T_target) < 0 ? lo : hi) = mid;
-            }
-            out.t = 0.5 * (lo + hi);
-            found = true;
-        }
-        if (!found) throw std::runtime_error("heat_prism_time_to: target not reached by t_max");
-    } catch (...) {
-        CVodeFree(&mem), SUNLinSolFree(LS), N_VDestroy(y), N_VDestroy(dky), SUNContext_Free(&ctx);
-        throw;
+    ok(CVodeInit(mem, rhs, 0.0, y), "CVodeInit");
+    ok(CVodeSetUserData(mem, &g), "CVodeSetUserData");
+    ok(CVodeSStolerances(mem, rtol, rtol * std::abs(p.T_end - p.T0)), "CVodeSStolerances");
+    ok(CVodeSetLinearSolver(mem, cv.LS, J), "CVodeSetLinearSolver");  // GMRES, difference-quotient J v
+    ok(CVodeSetMaxNumSteps(mem, 1000000), "CVodeSetMaxNumSteps");
+    ok(CVodeSetStopTime(mem, t_max), "CVodeSetStopTime");
+    const double sign = p.T_end > p.T0 ? 1 : -1;
+    auto short_of_target = [&](const double* T) { return sign * (centre(g, T) - T_target) < 0; };
+    realtype t = 0;
+    bool found = false;
+    while (!found && t < t_max) {
+        const double t_prev = t;
+        ok(CVode(mem, t_max, y, &t, CV_ONE_STEP), "CVode");
+        ++out.steps;
+        if (short_of_target(N_VGetArrayPointer(y))) continue;
+        out.t = cv.crossing(t_prev, t, 1e-12 * (t - t_prev), short_of_target);
+        found = true;
     }
-    CVodeFree(&mem), SUNLinSolFree(LS), N_VDestroy(y), N_VDestroy(dky), SUNContext_Free(&ctx);
+    if (!found) throw std::runtime_error("heat_prism_time_to: target not reached by t_max");
     return out;
 }
 

@@ -232,16 +232,18 @@ TEST(Conductivity, PicardFailureIsReported)
 
 TEST(Conductivity, CriticalStepUsesTheLargestConductivity)
 {
-    // k falls with T: on [100, 900] the largest k is k(100) = 47.5, so the step equals the plain
-    // model's at k = 47.5 (Agwai's operator is linear in k; 1e-12 for the roundings of the scaling).
+    // k falls with T: on [100, 900] the largest k is k(100) = 47.5, so the step is the Gershgorin step
+    // of the plain model at k = 47.5, by hand: an interior node of the 1D Agwai bar (no held node, no
+    // correction, full volumes A dx) has g = sum_j kappa_1 A dx/|xi| = 2k/(A delta^2) A 2 (1 + 1/2 + 1/3)
+    // = 22 k / (3 delta^2) for m = 3, so dt = rho c / g = 3 rho c delta^2 / (22 k). 1e-12 for the
+    // roundings of the bond sums and of the scaling.
     Bar bar(40);
     pd::ConductivityOfTheta<pd::Agwai> model({0, Bar::A}, linear_k(), bar.body, bar.bonds);
-    pd::Agwai plain({47.5, Bar::A}, bar.body, bar.bonds);
     const std::vector<double> rc(bar.body.size(), Bar::rho_c), theta(bar.body.size(), 500.0);
     pd::Conduction<pd::ConductivityOfTheta<pd::Agwai>> heat(model, bar.bonds, rc, {});
-    pd::Conduction<pd::Agwai> plain_heat(plain, bar.bonds, rc, {});
     const double dt = pd::thermal_critical_step_k(model, bar.bonds, heat, theta, 100, 900);
-    EXPECT_NEAR(dt, pd::thermal_critical_step(plain, bar.bonds, plain_heat, theta), 1e-12 * dt);
+    const double delta = Bar::m * bar.dx, k_max = k0 * (1 + beta * (100 - Tk));  // [m], 47.5 W/(m K)
+    EXPECT_NEAR(dt, 3 * Bar::rho_c * delta * delta / (22 * k_max), 1e-12 * dt);
 }
 
 // Bar at 20 C, ends held at 900 C; the profile at t = 60 s. Reference: CVODE at rtol 1e-10.

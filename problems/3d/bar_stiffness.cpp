@@ -18,7 +18,10 @@
 //      ADR density: Gershgorin bounds of the reference tangent of each model (exact for PMB; triangle
 //      inequality for LPS, PALS, correspondence: times --bound-factor).
 // Writes: convergence.csv (one row per n, model, correction), summary.csv (finest n), params.csv.
+#include "pd/bc/bar_supports.hpp"
 #include "pd/bc/grips.hpp"
+#include "pd/io/bar_options.hpp"
+#include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
@@ -42,8 +45,7 @@ namespace {
 struct Specimen {
     double L, W, T, U;   // length l2, width l1, thickness l3, end displacement [m]
     double dx, delta;    // [m]
-    pd::Body<3> body;
-    pd::NodeSet left, right;
+    pd::GrippedBar bar;  // body, left and right grips
     pd::BarGauge gauge;  // cross-section layers nearest L/2 -+ delta and their distance
 };
 
@@ -65,26 +67,6 @@ struct SolverChoice {
     std::string linear;         // Newton linear solver, or auto
 };
 
-// Three supports (u_y, u_z of the node nearest the centre, u_z of its nearest +y lattice neighbour)
-// fix the translations y, z and the rotation about x, which the grips (u_x only) leave free: the
-// tangent would be singular. They are statically determinate, so at equilibrium their reactions
-// vanish (the grips load only along x) and the deformation is that of the unsupported bar.
-std::vector<std::pair<int, int>> lateral_supports(const Specimen& s)
-{
-    auto nearest = [&](double x, double y, double z) {
-        int best = 0;
-        double d2 = INFINITY;
-        for (std::size_t i = 0; i < s.body.size(); ++i) {
-            const double dx = s.body.x.c[0][i] - x, dy = s.body.x.c[1][i] - y, dz = s.body.x.c[2][i] - z;
-            if (dx * dx + dy * dy + dz * dz < d2) d2 = dx * dx + dy * dy + dz * dz, best = static_cast<int>(i);
-        }
-        return best;
-    };
-    const int a = nearest(s.L / 2, s.W / 2, s.T / 2);
-    const int b = nearest(s.body.x.c[0][a], s.body.x.c[1][a] + s.dx, s.body.x.c[2][a]);
-    return {{a, 1}, {a, 2}, {b, 2}};
-}
-
 // ADR from the uniform uniaxial field (u_x = U x/L, lateral contraction nu_w), then E from the
 // reaction of the right grip and the interior cross-sections.
 template <class Model>
@@ -92,36 +74,36 @@ Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, const 
               const SolverChoice& sc, bool warm)
 {
     pd::Boundary<3> bc;
-    pd::grip_bar_ends(bc, s.left, s.right, pd::TimeFunction::constant(s.U), pd::Grips::axial);
-    pd::Field<3> u(s.body.size());
+    pd::grip_bar_ends(bc, s.bar.left, s.bar.right, pd::TimeFunction::constant(s.U), pd::Grips::axial);
+    pd::Field<3> u(s.bar.body.size());
     const double eps = s.U / s.L;
-    if (warm) pd::uniaxial_bar_field(s.body, s.L, s.W, s.T, s.U, eps, nu_w, pd::Grips::axial, u);
+    if (warm) pd::uniaxial_bar_field(s.bar.body, s.L, s.W, s.T, s.U, eps, nu_w, pd::Grips::axial, u);
     Outcome o;
     pd::Field<3> f;  // internal force density at the solution [N/m^3]
     if (sc.newton) {
-        const auto supports = lateral_supports(s);
+        const auto supports = pd::lateral_supports(s.bar.body, s.L, s.W, s.T, s.dx);
         for (auto [i, d] : supports)
             bc.prescribe({pd::Prescribed::Kind::displacement, {i}, d, pd::TimeFunction::constant(u.c[d][i])});
-        pd::Newton<3, Model> newton(s.body, bonds, model);
+        pd::Newton<3, Model> newton(s.bar.body, bonds, model);
         pd::NewtonOptions nopt = sc.options;
         nopt.tol = sc.tol;
         // auto: LU for the non-symmetric correspondence tangent; else Cholesky, CG above 3000 dofs
         // (the simplicial Cholesky of the state-based pattern costs ~90 s at 5000 dofs, reports/3d/bar_stiffness.md).
-        const char* automatic = !pd::detail::is_ordinary<Model>() ? "lu" : 3 * s.body.size() > 3000 ? "cg" : "cholesky";
+        const char* automatic = !pd::detail::is_ordinary<Model>() ? "lu" : 3 * s.bar.body.size() > 3000 ? "cg" : "cholesky";
         nopt.linear = pd::parse_linear_solver(sc.linear != "auto" ? sc.linear : automatic);
         const pd::NewtonResult r = newton.solve(u, bc, 0, nopt);
         o = {r.converged, r.iterations, r.tangents, r.residual, NAN, NAN, r.wall_s, r.message};
         f = newton.internal_force_density();
         o.tangent_s = r.tangent_s, o.linear_s = r.linear_s, o.colours = newton.colouring().count;
-        for (auto [i, d] : supports) o.support = std::max(o.support, std::abs(f.c[d][i] * s.body.volume[i]) / r.force_scale);
+        for (auto [i, d] : supports) o.support = std::max(o.support, std::abs(f.c[d][i] * s.bar.body.volume[i]) / r.force_scale);
     } else {
-        pd::DynamicRelaxation<3, Model> adr(s.body, bonds, model, bound);
+        pd::DynamicRelaxation<3, Model> adr(s.bar.body, bonds, model, bound);
         const pd::RelaxationResult r = adr.solve(u, bc, 0, sc.tol, sc.max_iter);
         o = {r.converged, r.iterations, 0, r.residual, NAN, NAN, r.wall_s, r.message};
         f = adr.internal_force_density();
     }
     if (!o.converged) return o;
-    const double F = pd::axial_reaction(f, s.body, s.right);  // reaction of the loaded grip [N]
+    const double F = pd::axial_reaction(f, s.bar.body, s.bar.right);  // reaction of the loaded grip [N]
     const double sigma = F / (s.W * s.T);                     // engineering stress [Pa]
     const double du = pd::mean_axial_displacement(u, s.gauge.sec_b) - pd::mean_axial_displacement(u, s.gauge.sec_a);
     o.E_meas = sigma / (du / s.gauge.dist);                   // (4.37)
@@ -135,14 +117,8 @@ static int run(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case), echoed and saved.
     pd::io::Options opt("bar_stiffness_3d", "Quasi-static 3D bar stiffness (spec/000b V2): measured E per PD model vs n.");
-    double& E = opt.add("E", 100e9, "Young's modulus", "Pa");
-    double& nu = opt.add("nu", 0.33, "Poisson's ratio (PMB uses only K: nu = 1/4 implied)");
-    double& L = opt.add("length", 10e-3, "bar length l2 (axial)", "m");
-    double& W = opt.add("width", 2e-3, "bar width l1", "m");
-    double& T = opt.add("thickness", 1e-3, "bar thickness l3 (dx = l3/n)", "m");
-    double& strain = opt.add("strain", 0.01, "end displacement / length");
-    double& m = opt.add("m", 3.05, "horizon ratio delta/dx");
-    double& grip = opt.add("grip", 2, "grip length outside each end, in delta (source: 2)");
+    const pd::io::BarOptions bar_opt = pd::io::add_bar_options(opt, 0.01, "end displacement / length");
+    const auto& [E, nu, L, W, T, strain, m, grip] = bar_opt;
     int& n_one = opt.add_int("n", 0, "nodes through the thickness (0: sweep 1 2 4 5 8 10 up to --n-max)");
     int& n_max = opt.add_int("n-max", 10, "largest n of the sweep (quick: 2)");
     std::string& which = opt.add_string("model", "all", "material model",
@@ -159,15 +135,14 @@ static int run(int argc, char** argv)
     double& bound_factor = opt.add("bound-factor", 1, "PALS/correspondence ADR density: model bound x this");
     std::string& start = opt.add_string("start", "uniform", "ADR initial guess (uniform uniaxial field, or zero)", {"uniform", "zero"});
     pd::io::add_standard(opt, "reports/3d/bar_stiffness");
-    for (const char* o : {"E", "length", "width", "thickness", "strain", "grip", "tol", "bound-factor"}) opt.require_positive(o);
-    opt.require_at_least("m", 1);
+    for (const char* o : {"tol", "bound-factor"}) opt.require_positive(o);
     opt.require_at_least("n", 0);
     opt.require_at_least("n-max", 1);
     opt.require_at_least("C-hg", 0);
     opt.require_at_least("max-iter", 1);
     opt.require_at_least("newton-max-iter", 1);
     opt.parse(argc, argv);
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
+    bar_opt.validate(opt);
     const bool quick = opt.get_flag("quick");
     if (quick && !opt.given("n-max")) n_max = 2;
     const std::filesystem::path out = opt.get_string("out");
@@ -197,14 +172,10 @@ static int run(int argc, char** argv)
                 "conv", "iters", "E_meas_Pa", "E_end_Pa", "rel_error", "wall_s");
     for (int n : ns) {
         // 2. Discretisation: bar plus ceil(grip delta/dx) grip layers outside each end.
-        Specimen s{L, W, T, strain * L, T / n, m * T / n, {}, {}, {}, {}};
-        pd::GrippedBar bar = pd::gripped_bar(L, W, T, s.dx, grip * s.delta);
-        s.body = std::move(bar.body);
-        s.left = std::move(bar.left);
-        s.right = std::move(bar.right);
-        s.gauge = pd::bar_gauge(s.body, L, s.dx, s.delta);
+        Specimen s{L, W, T, strain * L, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * (m * T / n)), {}};
+        s.gauge = pd::bar_gauge(s.bar.body, L, s.dx, s.delta);
         if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two measuring sections coincide");
-        const pd::Bonds bonds = pd::build_bonds(s.body, s.delta);
+        const pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
         // 3. Models; ADR density from each model's stiffness bound (dynamic_relaxation.hpp).
         const pd::PMB::Params pmb_params{.material = mat, .dim = 3};
         auto scaled = [&](pd::Field<3> G) { for (auto& c : G.c) for (double& g : c) g *= bound_factor; return G; };
@@ -216,20 +187,20 @@ static int run(int argc, char** argv)
                 if (name == "pmb") {
                     pd::PMB model(pmb_params, pd::Influence{}, bonds);
                     // Classical reference W_inf (the full lattice family does not fit in a bar 1-2 cells thick).
-                    pd::apply_surface_correction(model, s.body, bonds, pd::parse_surface_correction(corr),
+                    pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr),
                                                  {.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
-                    o = relax(model, pd::stiffness_bound(model, bonds, s.body.x), s, bonds, nu_w, solve_by, start == "uniform");
+                    o = relax(model, pd::stiffness_bound(model, bonds, s.bar.body.x), s, bonds, nu_w, solve_by, start == "uniform");
                 } else if (name == "lps" || name == "lps-scf") {
                     pd::LPS model({.material = mat, .dim = 3}, bonds);
-                    if (name == "lps-scf") model.apply_shear_correction(s.body.x);
-                    o = relax(model, pd::stiffness_bound(model, bonds, s.body.x), s, bonds, nu_w, solve_by, start == "uniform");
+                    if (name == "lps-scf") model.apply_shear_correction(s.bar.body.x);
+                    o = relax(model, pd::stiffness_bound(model, bonds, s.bar.body.x), s, bonds, nu_w, solve_by, start == "uniform");
                 } else if (name == "pals") {
-                    pd::PALS model({.material = mat}, s.body, bonds);
-                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
+                    pd::PALS model({.material = mat}, s.bar.body, bonds);
+                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.bar.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
                 } else {
                     using Corr = pd::Correspondence<3>;
-                    Corr model({.material = mat, .law = Corr::Law::linear, .C_hg = C_hg}, s.body, bonds);
-                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
+                    Corr model({.material = mat, .law = Corr::Law::linear, .C_hg = C_hg}, s.bar.body, bonds);
+                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.bar.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
                 }
                 // 6. Compare with the expected modulus, write the row, print.
                 const double E_exp = name == "pmb" ? E_pmb : E;
@@ -241,9 +212,9 @@ static int run(int argc, char** argv)
                 if (o.converged) last[key] = {s.dx, err};
                 finest[key] = o;
                 all_converged = all_converged && o.converged;
-                conv.row({n, s.dx, s.delta, m, s.body.size(), bonds.size(), name, corr, o.converged ? 1 : 0, o.iterations,
+                conv.row({n, s.dx, s.delta, m, s.bar.body.size(), bonds.size(), name, corr, o.converged ? 1 : 0, o.iterations,
                           o.tangents, o.residual, o.support, o.E_meas, o.E_end, E_exp, err, rate, o.wall_s});
-                std::printf("%3d %9.3e %7zu %9zu %-15s %-7s %6s %9ld %12.5e %12.5e %10.3e %8.2f\n", n, s.dx, s.body.size(),
+                std::printf("%3d %9.3e %7zu %9zu %-15s %-7s %6s %9ld %12.5e %12.5e %10.3e %8.2f\n", n, s.dx, s.bar.body.size(),
                             bonds.size(), name.c_str(), corr.c_str(), o.converged ? "yes" : "NO", o.iterations, o.E_meas,
                             o.E_end, err, o.wall_s);
                 if (!o.converged) std::printf("    %s: %s\n", key.c_str(), o.message.c_str());
@@ -265,17 +236,15 @@ static int run(int argc, char** argv)
 
     // --check (reasons in reports/3d/bar_stiffness.md): every ADR solve converged, and at the finest n
     // the energy surface correction brings PMB closer to its expected modulus.
-    bool ok = all_converged;
-    std::string why = all_converged ? "all " + solver + " solves converged" : "some " + solver + " solves did not converge";
+    pd::io::Checks check;
+    check(all_converged, "every " + solver + " solve converged");
     if (finest.count("pmb") && finest.count("pmb_sc")) {
         const double e0 = pd::io::relative_error(finest["pmb"].E_meas, E_pmb), e1 = pd::io::relative_error(finest["pmb_sc"].E_meas, E_pmb);
-        ok = ok && e1 < e0;
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "; PMB error %.3e without, %.3e with surface correction", e0, e1);
-        why += buf;
+        std::printf("PMB error %.3e without, %.3e with surface correction\n", e0, e1);
+        check(e1 < e0, "the energy surface correction brings PMB closer to 1.5 K (finest n)");
     }
-    std::printf("%s: %s\n", ok ? "PASS" : "FAIL", why.c_str());
-    return opt.get_flag("check") && !ok ? 1 : 0;
+    std::printf("%s\n", check.passed() ? "PASS" : "FAIL");
+    return opt.get_flag("check") && !check.passed() ? 1 : 0;
 }
 
 int main(int argc, char** argv) { return pd::io::guarded_main("bar_stiffness_3d", [&] { return run(argc, argv); }); }

@@ -10,6 +10,7 @@
 // References (never the model under test): 6 rigid-body modes in 3D, 3 in 2D (theory), and K r = 0
 // for the analytic rigid modes r; the PMB pair-spring matrix K_ij = -c V_i V_j n n^T / |xi|,
 // c = 18K/(pi delta^4) (reference/pmb_pair_stiffness.hpp), for the finite-difference assembly.
+// Test fields: pd/analysis/staggered_modes.hpp.
 // Compared: zero modes beyond the rigid ones (|lambda| < --zero-tol lambda_max); soft modes (below
 // 1/10 of the softest non-rigid LPS eigenvalue); the smallest non-rigid eigenvalues; Rayleigh
 // quotients of the checkerboard u = (-1)^(a+b+c) e_x, plain and under a bubble envelope, and of
@@ -19,6 +20,7 @@
 //      correspondence] [--zero-tol 1e-8] [--h 1e-5] [--quick] [--check] [--out DIR]
 // Writes: modes.csv (one row per model), eigenvalues.csv (lowest --spectrum per model), summary.csv,
 // params.csv.
+#include "pd/analysis/staggered_modes.hpp"
 #include "pd/analysis/stiffness_matrix.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
@@ -42,27 +44,6 @@ namespace {
 
 using Mat = Eigen::MatrixXd;
 constexpr double soft_factor = 0.1;  // soft mode: below this times the softest physical (LPS) mode
-
-// Test fields with the staggering (-1)^(k.a) of lattice index a = (a, b, c) and a wave-vector mask
-// k in {0, 1}^D (k pi / dx), polarised along e_pol: kind 0 plain, kind 1 times the bubble envelope
-// phi = prod_d sin(pi x_d / L) (vanishing at the free faces), kind 2 phi alone (k ignored: a
-// long-wave elastic mode, the physical scale). The checkerboard is k = (1, 1, 1), pol = x.
-template <int D>
-Eigen::VectorXd pattern(const pd::Body<D>& body, double L, int kind, int k_mask = 7, int pol = 0)
-{
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(D * body.size());
-    for (std::size_t i = 0; i < body.size(); ++i) {
-        long parity = 0;
-        double phi = 1;
-        for (int d = 0; d < D; ++d) {
-            if (k_mask >> d & 1) parity += std::lround(body.x.c[d][i] / body.dx - 0.5);
-            phi *= std::sin(std::numbers::pi * body.x.c[d][i] / L);
-        }
-        const double sign = parity % 2 ? -1 : 1;
-        u(D * i + pol) = kind == 0 ? sign : kind == 1 ? sign * phi : phi;
-    }
-    return u;
-}
 
 struct Modes : pd::StiffnessSpectrum {  // lambda, vectors, lambda_max, asymmetry, rigid_residual, rigid, negative
     std::string model;
@@ -88,29 +69,10 @@ Modes analyse(const Mat& K, const pd::Body<D>& body, double zero_tol)
     double L = 0;  // edge of the cube / square [m]
     for (std::size_t i = 0; i < body.size(); ++i) L = std::max(L, body.x.c[0][i] + body.dx / 2);
     for (int kind = 0; kind < 3; ++kind) {
-        const Eigen::VectorXd u = pattern(body, L, kind);
+        const Eigen::VectorXd u = pd::staggered_pattern(body, L, kind);
         m.rq[kind] = u.dot(S * u) / u.squaredNorm();
     }
     return m;
-}
-
-// Energy density of the checkerboard (amplitude 1e-6 dx) at the nodes with a full family, whose
-// neighbours all sit symmetrically: max W / (E (a/dx)^2 / 2). NaN when no node has a full family.
-// Correspondence: W excludes the hourglass energy (correspondence.hpp).
-template <int D, class Model>
-double interior_checker_energy(Model& model, const pd::Body<D>& body, const pd::Bonds& bonds, double E)
-{
-    const std::int64_t full = static_cast<std::int64_t>(pd::full_family_offsets(bonds.delta, body.dx, D).size());
-    const double a = 1e-6 * body.dx;  // amplitude [m]
-    const Eigen::VectorXd u = pattern(body, 1.0, 0);
-    pd::Field<D> y = body.x, f;
-    for (std::size_t i = 0; i < body.size(); ++i) y.c[0][i] += a * u(D * i);
-    pd::internal_force(model, bonds, y, f);  // point pass at y (theta, F)
-    const std::vector<double> W = model.energy_density(bonds, y);
-    double w = -1;
-    for (std::size_t i = 0; i < body.size(); ++i)
-        if (bonds.end(i) - bonds.begin(i) == full) w = std::max(w, std::abs(W[i]));
-    return w < 0 ? NAN : w / (0.5 * E * (a / body.dx) * (a / body.dx));
 }
 
 }  // namespace
@@ -163,7 +125,7 @@ static int run(int argc, char** argv)
         Modes md = analyse(K, bd, zero_tol);
         md.model = name;
         md.C_hg = c;
-        md.interior_W = interior_checker_energy(model, bd, bb, E);
+        md.interior_W = pd::interior_checker_energy(model, bd, bb, E);
         md.wall_s = t.seconds();
         modes.push_back(std::move(md));
         return K;
@@ -214,7 +176,7 @@ static int run(int argc, char** argv)
             int count = 0;
             for (int k = 1; k < (1 << md.dim); ++k)
                 for (int pol = 0; pol < md.dim; ++pol, ++count) {
-                    const Eigen::VectorXd u = md.dim == 3 ? pattern(body, L, 1, k, pol) : pattern(square, L, 1, k, pol);
+                    const Eigen::VectorXd u = md.dim == 3 ? pd::staggered_pattern(body, L, 1, k, pol) : pd::staggered_pattern(square, L, 1, k, pol);
                     sum += (Vs.transpose() * u).squaredNorm() / u.squaredNorm();
                 }
             md.in_soft = sum / count;

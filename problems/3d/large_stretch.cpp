@@ -17,13 +17,13 @@
 // stress); equivalent strain eps_eq = sqrt(2/3 h':h'), h' = dev diag(ln lambda, ln mu_y, ln mu_z).
 // Run: large_stretch_3d [--model all|pmb|lps|pals|correspondence|correspondence-svk] [--n 4]
 //      [--steps 50] [--strain 1] [--tol 1e-6] [--safety 1.2] [--quick] [--check] [--out DIR]
+// Load stepping and gauge measurement: large_stretch_steps.hpp.
 // Writes: curves.csv (one row per model and step), summary.csv, params.csv.
 #include "pd/bc/grips.hpp"
+#include "pd/io/bar_options.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/measure/bar_sections.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/load_step.hpp"
 #include "pd/models/lps.hpp"
@@ -31,119 +31,27 @@
 #include "pd/models/pmb.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
-#include "reference/uniaxial_stretch.hpp"
+
+#include "large_stretch_steps.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
-#include <stdexcept>
 
-namespace {
-
+using large_stretch::Bar;
+using large_stretch::Loading;
+using large_stretch::Point;
+using large_stretch::Run;
+using large_stretch::stretch;
 using pd::ref::UniaxialLaw;
-
-struct Point {  // one converged load step
-    double strain = 0, P = 0, lambda = 1, mu_y = 1, mu_z = 1, sigma = 0, eps_eq = 0;
-    double P_ref = 0, sigma_ref = 0, eps_eq_ref = 0;  // closed form at the same gauge stretch
-    long iterations = 0;
-    double residual = 0;
-};
-
-struct Run {
-    std::vector<Point> curve;
-    bool converged = true;
-    std::string message;
-    double wall_s = 0;
-};
-
-struct Bar {
-    double L, W, T, dx, delta;
-    pd::GrippedBar g;
-    pd::BarGauge gauge;  // gauge layers (0.5 l2 -+ delta), gauge length, the mid-length layers
-};
-
-// sqrt(2/3 h':h') of the Hencky strain diag(ln a, ln b, ln c).
-double equivalent_strain(double a, double b, double c)
-{
-    const double h[3] = {std::log(a), std::log(b), std::log(c)}, m = (h[0] + h[1] + h[2]) / 3;
-    return std::sqrt(2.0 / 3 * ((h[0] - m) * (h[0] - m) + (h[1] - m) * (h[1] - m) + (h[2] - m) * (h[2] - m)));
-}
-
-// Load stepping by ADR; `commit` ends each converged step (Flanagan-Taylor), no-op otherwise.
-template <class Model, class Commit>
-Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bonds& bonds, double strain, int steps,
-            double nu, double tol, long max_iter, double safety, UniaxialLaw law, const pd::Elastic& mat, Commit commit)
-{
-    const pd::io::Timer timer;
-    const pd::Body<3>& body = s.g.body;
-    pd::DynamicRelaxation<3, Model> adr(body, bonds, model, bound);
-    adr.safety = safety * pd::ref::max_tangent_ratio(law, mat.K, mat.G, 1 + strain);  // cover the stiffening
-    pd::Field<3> u(body.size()), u_old(body.size()), y(body.size());  // u_old: converged field of step k - 2 (0: unloaded)
-    const double e = strain / steps;  // step 1 guess: uniform uniaxial field of the first step
-    pd::uniaxial_bar_field(body, s.L, s.W, s.T, e * s.L, e, nu, pd::Grips::axial, u);
-    Run run;
-    for (int k = 1; k <= steps; ++k) {
-        const double U = strain * s.L * k / steps;
-        pd::Boundary<3> bc;
-        pd::grip_bar_ends(bc, s.g.left, s.g.right, pd::TimeFunction::constant(U), pd::Grips::axial);
-        if (k > 1) {  // secant predictor from the converged fields of steps k - 1 and k - 2
-            const pd::Field<3> u_km1 = u;
-            for (int d = 0; d < 3; ++d)
-                for (std::size_t i = 0; i < body.size(); ++i) u.c[d][i] = 2 * u.c[d][i] - u_old.c[d][i];
-            u_old = u_km1;
-        }
-        const pd::RelaxationResult r = adr.solve(u, bc, 0, tol, max_iter);
-        if (!r.converged) {
-            run.converged = false;
-            run.message = "step " + std::to_string(k) + ": " + r.message;
-            break;
-        }
-        pd::add_fields(body.x, u, y);
-        commit(bonds, y);
-        Point p{.strain = U / s.L, .iterations = r.iterations, .residual = r.residual};
-        const double F = pd::axial_reaction(adr.internal_force_density(), body, s.g.right);  // right grip [N]
-        const pd::BarGauge& g = s.gauge;
-        p.P = F / (s.W * s.T);
-        p.lambda = 1 + (pd::mean_axial_displacement(u, g.sec_b) - pd::mean_axial_displacement(u, g.sec_a)) / g.dist;
-        p.mu_y = pd::lateral_stretch(body.x, u, g.mid, 1);
-        p.mu_z = pd::lateral_stretch(body.x, u, g.mid, 2);
-        if (!(std::isfinite(p.lambda) && p.lambda > 0 && p.mu_y > 0 && p.mu_z > 0)) {  // e.g. a section turned inside out
-            run.converged = false;
-            run.message = "step " + std::to_string(k) + ": nonphysical gauge state (stretches " + std::to_string(p.lambda) + ", " +
-                          std::to_string(p.mu_y) + ", " + std::to_string(p.mu_z) + ")";
-            break;
-        }
-        p.sigma = p.P / (p.mu_y * p.mu_z);
-        p.eps_eq = equivalent_strain(p.lambda, p.mu_y, p.mu_z);
-        try {
-            const pd::ref::UniaxialPoint c = pd::ref::uniaxial_stress(law, mat.K, mat.G, p.lambda);
-            p.P_ref = c.P;
-            p.sigma_ref = c.sigma;
-            p.eps_eq_ref = equivalent_strain(p.lambda, c.mu, c.mu);
-        } catch (const std::domain_error&) {  // SVK beyond the collapse of its section: no closed form
-            p.P_ref = p.sigma_ref = p.eps_eq_ref = NAN;
-        }
-        run.curve.push_back(p);
-    }
-    run.wall_s = timer.seconds();
-    return run;
-}
-
-}  // namespace
 
 static int run(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case), echoed and saved.
     pd::io::Options opt("large_stretch_3d", "V2 bar to 100 % nominal strain (spec/000b V5): stress-strain per PD model.");
-    double& E = opt.add("E", 100e9, "Young's modulus", "Pa");
-    double& nu = opt.add("nu", 0.33, "Poisson's ratio (PMB uses only K: nu = 1/4 implied)");
-    double& L = opt.add("length", 10e-3, "bar length l2 (axial)", "m");
-    double& W = opt.add("width", 2e-3, "bar width l1", "m");
-    double& T = opt.add("thickness", 1e-3, "bar thickness l3 (dx = l3/n)", "m");
-    double& strain = opt.add("strain", 1.0, "final end displacement / length (source: 1)");
-    double& m = opt.add("m", 3.05, "horizon ratio delta/dx");
-    double& grip = opt.add("grip", 2, "grip length outside each end, in delta (source: 2)");
+    const pd::io::BarOptions bar_opt = pd::io::add_bar_options(opt, 1.0, "final end displacement / length (source: 1)");
+    auto& [E, nu, L, W, T, strain, m, grip] = bar_opt;
     int& n = opt.add_int("n", 4, "nodes through the thickness (source: 5; standard 4 for run time; quick: 3)");
     int& steps = opt.add_int("steps", 50, "equal load steps (source: 50; quick: 10)");
     std::string& which = opt.add_string("model", "all", "material model",
@@ -153,14 +61,13 @@ static int run(int argc, char** argv)
     double& safety = opt.add("safety", 1.2, "ADR density safety factor over the reference-tangent bound");
     int& max_iter = opt.add_int("max-iter", 5000, "ADR iteration limit per load step (converged steps need < 600)");
     pd::io::add_standard(opt, "reports/3d/large_stretch");
-    for (const char* o : {"E", "length", "width", "thickness", "strain", "grip", "tol", "safety"}) opt.require_positive(o);
-    opt.require_at_least("m", 1);
+    for (const char* o : {"tol", "safety"}) opt.require_positive(o);
     opt.require_at_least("n", 2);
     opt.require_at_least("steps", 1);
     opt.require_at_least("C-hg", 0);
     opt.require_at_least("max-iter", 1);
     opt.parse(argc, argv);
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
+    bar_opt.validate(opt);
     const bool quick = opt.get_flag("quick");
     if (quick && !opt.given("n")) n = 2;
     if (quick && !opt.given("steps")) steps = 10;
@@ -181,36 +88,35 @@ static int run(int argc, char** argv)
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     std::vector<std::string> models{"pmb", "lps", "pals", "correspondence", "correspondence-svk"};
     if (which != "all") models = {which};
+    const Loading load{strain, steps, tol, max_iter, safety};
     auto none = [](const pd::Bonds&, const pd::Field<3>&) {};
     std::map<std::string, Run> runs;
     for (const std::string& name : models) {
         using Corr = pd::Correspondence<3>;
         const pd::Body<3>& body = s.g.body;
+        auto load_steps = [&](auto& model, UniaxialLaw law, auto commit) {  // density: the model's reference-tangent bound
+            return stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit);
+        };
         Run r;
         if (name == "pmb") {  // nu = 1/4, energy surface correction (classical W_inf), as bar_stiffness_3d
             pd::PMB model({.material = mat, .dim = 3}, pd::Influence{}, bonds);
             pd::apply_surface_correction(model, body, bonds, pd::SurfaceCorrectionMethod::energy,
                                          {.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
             const pd::Elastic pmb_mat = pd::Elastic::from_E_nu(3 * mat.K * 0.5, 0.25);  // E = 1.5 K
-            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, strain, steps, 0.25, tol, max_iter, safety,
-                        UniaxialLaw::pmb_continuum, pmb_mat, none);
+            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, 0.25, UniaxialLaw::pmb_continuum, pmb_mat, none);
         } else if (name == "lps") {
             pd::LPS model({.material = mat, .dim = 3}, bonds);
-            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, strain, steps, nu, tol, max_iter, safety,
-                        UniaxialLaw::lps_continuum, mat, none);
+            r = load_steps(model, UniaxialLaw::lps_continuum, none);
         } else if (name == "pals") {
             pd::PALS model({.material = mat}, body, bonds);
-            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, strain, steps, nu, tol, max_iter, safety,
-                        UniaxialLaw::lps_continuum, mat, none);
+            r = load_steps(model, UniaxialLaw::lps_continuum, none);
         } else if (name == "correspondence-svk") {
             Corr model({.material = mat, .law = Corr::Law::saint_venant_kirchhoff, .C_hg = C_hg}, body, bonds);
-            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, strain, steps, nu, tol, max_iter, safety,
-                        UniaxialLaw::saint_venant_kirchhoff, mat, none);
+            r = load_steps(model, UniaxialLaw::saint_venant_kirchhoff, none);
         } else {
             Corr model({.material = mat, .law = Corr::Law::flanagan_taylor, .C_hg = C_hg}, body, bonds);
             pd::LoadStep<Corr> ls(model, body.x);
-            r = stretch(ls, pd::stiffness_bound(ls, bonds, body.x), s, bonds, strain, steps, nu, tol, max_iter, safety,
-                        UniaxialLaw::hypoelastic, mat, [&](const pd::Bonds& bb, const pd::Field<3>& y) { ls.commit(bb, y); });
+            r = load_steps(ls, UniaxialLaw::hypoelastic, [&](const pd::Bonds& bb, const pd::Field<3>& y) { ls.commit(bb, y); });
         }
         std::printf("%-19s %s, %zu steps, %.1f s%s%s\n", name.c_str(), r.converged ? "converged" : "NOT converged", r.curve.size(),
                     r.wall_s, r.converged ? "" : ": ", r.message.c_str());

@@ -17,20 +17,20 @@
 // <= A/2, A = L/(c t_ramp), c = sqrt(E/rho), if A <= 1/8 (bounds argued in reports/3d/pals_units.md).
 // Run: pals_units_3d [--units all|si|mmgs|cgs] [--model all|pmb|lps|lps-scf|pals|correspondence]
 //      [--grid standard|table | --sf 0.5,0.1 --dx 1e-3,1.5e-3] [--quick] [--check] [--out DIR]
+// Scene, measurement and runs in one unit system: pals_units_runs.hpp.
 // Writes: runs.csv (one row per units, model, dx, SF), summary.csv, params.csv.
-#include "pd/bc/grips.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
-#include "pd/measure/bar_sections.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
-#include "pd/time/critical_step.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
+
+#include "pals_units_runs.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -40,94 +40,9 @@
 
 namespace {
 
-struct Units {
-    std::string name;
-    double L, M, T;                                      // one length, mass, time unit in m, kg, s
-    double stress() const { return M / (L * T * T); }   // one stress unit [Pa]
-};
-
-// One lattice in one unit system (all members in that system's units).
-struct Scene {
-    double L, W, T, U, dx, delta, t_ramp, rho, dist = 0;
-    pd::GrippedBar bar;
-    pd::Bonds bonds;
-    std::vector<int> sec_a, sec_b, mid_a, mid_b;  // layers nearest L/2 -+ delta; their nodes within dx of the axis
-};
-
-Scene make_scene(const Units& u, double L, double W, double T, double strain, double dx, double m, double t_ramp, double rho)
-{
-    Scene s{L / u.L, W / u.L, T / u.L, strain * L / u.L, dx / u.L, m * dx / u.L, t_ramp / u.T, rho / (u.M / (u.L * u.L * u.L)), 0, {}, {}, {}, {}, {}, {}};
-    s.bar = pd::gripped_bar(s.L, s.W, s.T, s.dx, 2 * s.delta);
-    s.bonds = pd::build_bonds(s.bar.body, s.delta);
-    const pd::BarGauge g = pd::bar_gauge(s.bar.body, s.L, s.dx, s.delta);
-    s.dist = g.dist;
-    if (!(s.dist > 0)) throw std::invalid_argument("option --m too large for the bar: the two measuring sections coincide");
-    auto axis = [&](int i) { return pd::near_bar_axis(s.bar.body, i, s.W, s.T, s.dx); };
-    for (int i : g.sec_a) (axis(i) ? s.mid_a : s.sec_a).push_back(i);  // each section: the axis nodes last
-    for (int i : g.sec_b) (axis(i) ? s.mid_b : s.sec_b).push_back(i);
-    s.sec_a.insert(s.sec_a.end(), s.mid_a.begin(), s.mid_a.end());
-    s.sec_b.insert(s.sec_b.end(), s.mid_b.begin(), s.mid_b.end());
-    return s;
-}
-
-// sigma and eps of (4.37) from the internal force density f and displacement u (scene units):
-// eps from the section means and, as the source's "two points near the section centre", eps_axis.
-struct Measure { double sigma, eps, eps_axis; };
-Measure measure(const Scene& s, const pd::Field<3>& f, const pd::Field<3>& u)
-{
-    const double F = pd::axial_reaction(f, s.bar.body, s.bar.right);  // reaction on the bar at the pulled grip
-    auto mean = [&](const pd::NodeSet& set) { return pd::mean_axial_displacement(u, set); };
-    return {F / (s.W * s.T), (mean(s.sec_b) - mean(s.sec_a)) / s.dist, (mean(s.mid_b) - mean(s.mid_a)) / s.dist};
-}
-
-struct Outcome {
-    double E_end = NAN, E_mean = NAN, E_axis = NAN, dt = 0, dt_crit = 0, wall_s = 0;  // scene units
-    long steps = 0, bad_step = -1, bad_node = -1;
-    std::string message;
-};
-
-template <class Model>
-Outcome run_explicit(Scene& s, Model& model, double sf, double c_pmb)
-{
-    Outcome o;
-    pd::Explicit<3, Model> sim(s.bar.body, s.bonds, model, s.rho);
-    pd::grip_bar_ends(sim.boundary, s.bar.left, s.bar.right, pd::TimeFunction::ramp(s.U, s.t_ramp), pd::Grips::clamped);
-    sim.start();
-    o.dt_crit = pd::critical_step_silling_askari(s.bonds, sim.rho, c_pmb).dt;
-    o.steps = static_cast<long>(std::ceil(s.t_ramp / (sf * o.dt_crit)));
-    o.dt = s.t_ramp / o.steps;
-    const long window = std::max(o.steps / 4, 1L), guard_every = 1000;  // guard: one energy pass per 1000 steps
-    double sum_sigma = 0, sum_eps = 0, sum_axis = 0;
-    const pd::io::Timer timer;
-    try {
-        for (long n = 1; n <= o.steps; ++n) {
-            sim.step(o.dt);
-            if (n % guard_every == 0 || n == o.steps) sim.check_energy();
-            if (n <= o.steps - window) continue;
-            const Measure q = measure(s, sim.internal_force_density(), sim.u);
-            sum_sigma += q.sigma, sum_eps += q.eps, sum_axis += q.eps_axis;
-            if (n == o.steps) o.E_end = q.sigma / q.eps;
-        }
-        o.E_mean = sum_sigma / sum_eps;
-        o.E_axis = sum_sigma / sum_axis;
-    } catch (const pd::Unstable& e) { o.bad_step = e.step; o.bad_node = e.node; o.message = e.what(); }
-    o.wall_s = timer.seconds();
-    return o;
-}
-
-// Quasi-static E of the same scene by ADR, warm-started from the uniform uniaxial field.
-template <class Model>
-double quasi_static(const Scene& s, Model& model, const pd::Field<3>& bound, double nu)
-{
-    pd::DynamicRelaxation<3, Model> adr(s.bar.body, s.bonds, model, bound);
-    pd::Boundary<3> bc;
-    pd::grip_bar_ends(bc, s.bar.left, s.bar.right, pd::TimeFunction::constant(s.U), pd::Grips::clamped);
-    pd::Field<3> u(s.bar.body.size());
-    pd::uniaxial_bar_field(s.bar.body, s.L, s.W, s.T, s.U, s.U / s.L, nu, pd::Grips::clamped, u);
-    const pd::RelaxationResult r = adr.solve(u, bc, 0, 1e-6, 200000);  // tol as bar_stiffness; not converged: NaN (fails --check)
-    const Measure q = measure(s, adr.internal_force_density(), u);
-    return r.converged ? q.sigma / q.eps : NAN;
-}
+using pals_units::Outcome;
+using pals_units::Scene;
+using pals_units::Units;
 
 // Builds model `name` on scene s and calls fn(model, ADR row-sum bound, PMB micromodulus c for dt_crit).
 template <class Fn>
@@ -219,13 +134,13 @@ static int run(int argc, char** argv)
                 "E_end", "E_mean", "E_axis", "E_qs_GPa", "dev_vs_si", "mean/qs-1", "wall_s");
     for (const Case& c : cases) {
         std::vector<Scene> scenes;
-        for (const Units& u : systems) scenes.push_back(make_scene(u, L, W, T, strain, c.dx, m, t_ramp, rho));
+        for (const Units& u : systems) scenes.push_back(pals_units::make_scene(u, L, W, T, strain, c.dx, m, t_ramp, rho));
         std::stringstream names(c.models);
         for (std::string name; names >> name;) {
             const std::string key = name + "@" + std::to_string(c.dx);
             if (!E_qs.count(key))
                 with_model(name, scenes[0], pd::Elastic::from_E_nu(E / systems[0].stress(), nu), C_hg, [&](auto& model, const auto& bound, double) {
-                    E_qs[key] = quasi_static(scenes[0], model, bound, nu) * systems[0].stress() * 1e-9;
+                    E_qs[key] = pals_units::quasi_static(scenes[0], model, bound, nu) * systems[0].stress() * 1e-9;
                 });
             double E_si_end = NAN, E_si_mean = NAN;
             for (std::size_t k = 0; k < systems.size(); ++k) {
@@ -233,7 +148,7 @@ static int run(int argc, char** argv)
                 Scene& s = scenes[k];
                 Outcome o;
                 with_model(name, s, pd::Elastic::from_E_nu(E / u.stress(), nu), C_hg,
-                           [&](auto& model, const auto&, double c_pmb) { o = run_explicit(s, model, c.sf, c_pmb); });
+                           [&](auto& model, const auto&, double c_pmb) { o = pals_units::run_explicit(s, model, c.sf, c_pmb); });
                 const double to_GPa = u.stress() * 1e-9, E_end = o.E_end * to_GPa, E_mean = o.E_mean * to_GPa;
                 if (u.name == "si") { E_si_end = E_end; E_si_mean = E_mean; }
                 const double dev_end = E_end / E_si_end - 1, dev_mean = E_mean / E_si_mean - 1, vs_qs = E_mean / E_qs[key] - 1;

@@ -57,6 +57,23 @@ inline void add_surface_flux(HeatLoads& loads, std::size_t n, const std::vector<
     for (int i : layer) loads.source[i] += q / depth;
 }
 
+// Rows of a bond-wise heat operator: A_ij = c(i, k) for every intact bond k = i-j and A_ii = -sum_k c(i, k),
+// c(i, k) the conductance of bond k [W/(m^3 K)] (Agwai: coef_k; with k(theta): k_ij coef_k).
+template <class Conductance>
+void add_bond_operator(const Bonds& b, std::vector<Eigen::Triplet<double>>& t, Conductance&& c)
+{
+    for (std::size_t i = 0; i < b.nodes(); ++i) {
+        double diag = 0;
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+            if (b.has_damage() && !b.intact[k]) continue;
+            const double ck = c(i, k);
+            t.emplace_back(int(i), b.partner[k], ck);
+            diag -= ck;
+        }
+        t.emplace_back(int(i), int(i), diag);
+    }
+}
+
 // Linear heat operator A (Q = A theta) of a model: its own add_operator(bonds, triplets) when it has
 // one (correspondence heat), else from per-bond conductances coef (Agwai).
 template <class Model>
@@ -67,15 +84,7 @@ Eigen::SparseMatrix<double> heat_operator(const Model& model, const Bonds& b)
         model.add_operator(b, t);
     } else {
         t.reserve(b.size() + b.nodes());
-        for (std::size_t i = 0; i < b.nodes(); ++i) {
-            double diag = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (b.has_damage() && !b.intact[k]) continue;
-                t.emplace_back(int(i), b.partner[k], model.coef[k]);
-                diag -= model.coef[k];
-            }
-            t.emplace_back(int(i), int(i), diag);
-        }
+        add_bond_operator(b, t, [&](std::size_t, std::int64_t k) { return model.coef[k]; });
     }
     Eigen::SparseMatrix<double> A(int(b.nodes()), int(b.nodes()));
     A.setFromTriplets(t.begin(), t.end());

@@ -65,16 +65,7 @@ struct ConductivityOfTheta {
         if constexpr (requires { base.add_operator_scaled(b, t, [](std::size_t) { return 1.0; }, s_bond); }) {
             base.add_operator_scaled(b, t, [this](std::size_t i) { return s[i]; }, s_bond);
         } else {
-            for (std::size_t i = 0; i < b.nodes(); ++i) {
-                double diag = 0;
-                for (std::int64_t kb = b.begin(i); kb < b.end(i); ++kb) {
-                    if (b.has_damage() && !b.intact[kb]) continue;
-                    const double c = s_bond(i, b.partner[kb]) * base.coef[kb];
-                    t.emplace_back(int(i), b.partner[kb], c);
-                    diag -= c;
-                }
-                t.emplace_back(int(i), int(i), diag);
-            }
+            add_bond_operator(b, t, [&](std::size_t i, std::int64_t kb) { return s_bond(i, b.partner[kb]) * base.coef[kb]; });
         }
     }
 

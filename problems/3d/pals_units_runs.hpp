@@ -1,0 +1,112 @@
+// problems/3d/pals_units_runs.hpp -- steps 2, 4 and 5 of pals_units_3d in one unit system: the gripped
+// bar scene (every input converted to the system's units before the lattice is built; gauge layers
+// nearest L/2 -+ delta with their nodes next to the axis), the measurement of eq. (4.37) (sigma = F/(W T)
+// from the pulled grip's reaction, eps from the section-mean u_x and from the axis nodes), the explicit
+// ramp run (velocity Verlet, dt = t_ramp/ceil(t_ramp/(SF dt_crit)), E_end at t_ramp, E_mean over the last
+// quarter of the ramp, energy guard every 1000 steps) and the quasi-static reference E by ADR.
+#pragma once
+#include "pd/bc/grips.hpp"
+#include "pd/io/timer.hpp"
+#include "pd/measure/bar_sections.hpp"
+#include "pd/time/critical_step.hpp"
+#include "pd/time/dynamic_relaxation.hpp"
+#include "pd/time/verlet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pals_units {
+
+struct Units {
+    std::string name;
+    double L, M, T;                                      // one length, mass, time unit in m, kg, s
+    double stress() const { return M / (L * T * T); }   // one stress unit [Pa]
+};
+
+// One lattice in one unit system (all members in that system's units).
+struct Scene {
+    double L, W, T, U, dx, delta, t_ramp, rho, dist = 0;
+    pd::GrippedBar bar;
+    pd::Bonds bonds;
+    std::vector<int> sec_a, sec_b, mid_a, mid_b;  // layers nearest L/2 -+ delta; their nodes within dx of the axis
+};
+
+Scene make_scene(const Units& u, double L, double W, double T, double strain, double dx, double m, double t_ramp, double rho)
+{
+    Scene s{L / u.L, W / u.L, T / u.L, strain * L / u.L, dx / u.L, m * dx / u.L, t_ramp / u.T, rho / (u.M / (u.L * u.L * u.L)), 0, {}, {}, {}, {}, {}, {}};
+    s.bar = pd::gripped_bar(s.L, s.W, s.T, s.dx, 2 * s.delta);
+    s.bonds = pd::build_bonds(s.bar.body, s.delta);
+    const pd::BarGauge g = pd::bar_gauge(s.bar.body, s.L, s.dx, s.delta);
+    s.dist = g.dist;
+    if (!(s.dist > 0)) throw std::invalid_argument("option --m too large for the bar: the two measuring sections coincide");
+    auto axis = [&](int i) { return pd::near_bar_axis(s.bar.body, i, s.W, s.T, s.dx); };
+    for (int i : g.sec_a) (axis(i) ? s.mid_a : s.sec_a).push_back(i);  // each section: the axis nodes last
+    for (int i : g.sec_b) (axis(i) ? s.mid_b : s.sec_b).push_back(i);
+    s.sec_a.insert(s.sec_a.end(), s.mid_a.begin(), s.mid_a.end());
+    s.sec_b.insert(s.sec_b.end(), s.mid_b.begin(), s.mid_b.end());
+    return s;
+}
+
+// sigma and eps of (4.37) from the internal force density f and displacement u (scene units):
+// eps from the section means and, as the source's "two points near the section centre", eps_axis.
+struct Measure { double sigma, eps, eps_axis; };
+Measure measure(const Scene& s, const pd::Field<3>& f, const pd::Field<3>& u)
+{
+    const double F = pd::axial_reaction(f, s.bar.body, s.bar.right);  // reaction on the bar at the pulled grip
+    auto mean = [&](const pd::NodeSet& set) { return pd::mean_axial_displacement(u, set); };
+    return {F / (s.W * s.T), (mean(s.sec_b) - mean(s.sec_a)) / s.dist, (mean(s.mid_b) - mean(s.mid_a)) / s.dist};
+}
+
+struct Outcome {
+    double E_end = NAN, E_mean = NAN, E_axis = NAN, dt = 0, dt_crit = 0, wall_s = 0;  // scene units
+    long steps = 0, bad_step = -1, bad_node = -1;
+    std::string message;
+};
+
+template <class Model>
+Outcome run_explicit(Scene& s, Model& model, double sf, double c_pmb)
+{
+    Outcome o;
+    pd::Explicit<3, Model> sim(s.bar.body, s.bonds, model, s.rho);
+    pd::grip_bar_ends(sim.boundary, s.bar.left, s.bar.right, pd::TimeFunction::ramp(s.U, s.t_ramp), pd::Grips::clamped);
+    sim.start();
+    o.dt_crit = pd::critical_step_silling_askari(s.bonds, sim.rho, c_pmb).dt;
+    o.steps = static_cast<long>(std::ceil(s.t_ramp / (sf * o.dt_crit)));
+    o.dt = s.t_ramp / o.steps;
+    const long window = std::max(o.steps / 4, 1L), guard_every = 1000;  // guard: one energy pass per 1000 steps
+    double sum_sigma = 0, sum_eps = 0, sum_axis = 0;
+    const pd::io::Timer timer;
+    try {
+        for (long n = 1; n <= o.steps; ++n) {
+            sim.step(o.dt);
+            if (n % guard_every == 0 || n == o.steps) sim.check_energy();
+            if (n <= o.steps - window) continue;
+            const Measure q = measure(s, sim.internal_force_density(), sim.u);
+            sum_sigma += q.sigma, sum_eps += q.eps, sum_axis += q.eps_axis;
+            if (n == o.steps) o.E_end = q.sigma / q.eps;
+        }
+        o.E_mean = sum_sigma / sum_eps;
+        o.E_axis = sum_sigma / sum_axis;
+    } catch (const pd::Unstable& e) { o.bad_step = e.step; o.bad_node = e.node; o.message = e.what(); }
+    o.wall_s = timer.seconds();
+    return o;
+}
+
+// Quasi-static E of the same scene by ADR, warm-started from the uniform uniaxial field.
+template <class Model>
+double quasi_static(const Scene& s, Model& model, const pd::Field<3>& bound, double nu)
+{
+    pd::DynamicRelaxation<3, Model> adr(s.bar.body, s.bonds, model, bound);
+    pd::Boundary<3> bc;
+    pd::grip_bar_ends(bc, s.bar.left, s.bar.right, pd::TimeFunction::constant(s.U), pd::Grips::clamped);
+    pd::Field<3> u(s.bar.body.size());
+    pd::uniaxial_bar_field(s.bar.body, s.L, s.W, s.T, s.U, s.U / s.L, nu, pd::Grips::clamped, u);
+    const pd::RelaxationResult r = adr.solve(u, bc, 0, 1e-6, 200000);  // tol as bar_stiffness; not converged: NaN (fails --check)
+    const Measure q = measure(s, adr.internal_force_density(), u);
+    return r.converged ? q.sigma / q.eps : NAN;
+}
+
+}  // namespace pals_units
