@@ -144,13 +144,20 @@ static int run(int argc, char** argv)
     const double theta = br.found ? 0.5 * (br.angle_upper - br.angle_lower) * 180 / std::numbers::pi : nan;  // mean half-angle [deg]
     const double v_mean = tip_mid.mean_speed(window, t_init, t_end), v_max = tip_mid.max_speed(window);
     const double cR = pd::crack::rayleigh_speed(E, mat.nu(), rho);
-    double gap = 0;  // max |advance(surface) - advance(mid)| at common sample times [m]
+    double gap = 0, lead = 0;  // max |advance(surface) - advance(mid)|, mean advance(mid) - advance(surface) [m]
+    long pairs = 0;
     for (std::size_t l = 0; l < tip_mid.size(); ++l) {
         const double a_mid = tip_mid.advance[l];
         for (const auto* s : {&tip_bot, &tip_top})
             for (std::size_t q = 0; q < s->size(); ++q)
-                if (s->t[q] == tip_mid.t[l]) gap = std::max(gap, std::abs(s->advance[q] - a_mid));
+                if (s->t[q] == tip_mid.t[l]) gap = std::max(gap, std::abs(s->advance[q] - a_mid)), lead += a_mid - s->advance[q], ++pairs;
     }
+    lead = pairs ? lead / static_cast<double>(pairs) : nan;
+    auto damaged = [&](const Layer& ly) {
+        double n = 0;
+        for (int i : ly.node) n += phi[i] >= threshold;
+        return n;
+    };
     std::printf("%zu nodes (%ld layers, thickness %.3g mm), %zu bonds, c %.4g N/m^6, s0 %.4g, dt %.3g ns (crit %.3g), %ld steps, %ld bonds broken, %.1f s\n",
                 body.size(), nz, nz * dx * 1e3, bonds.size(), info.c, info.s0, info.dt * 1e9, info.dt_crit * 1e9, info.steps, info.broken, info.wall);
 
@@ -185,10 +192,15 @@ static int run(int argc, char** argv)
         {"x_branch_m", br.found ? br.point[0] : nan, nan, nan, "m"},
         {"y_branch_m", br.found ? br.point[1] - H / 2 : nan, nan, nan, "m"},
         {"x_branch_surface_m", br_surf.found ? br_surf.point[0] : nan, nan, nan, "m"},
+        {"x_split_m", br.found ? origin[0] + br.s_split : nan, nan, nan, "m"},  // first of the confirmed two-band bins
+        {"x_split_surface_m", br_surf.found ? origin[0] + br_surf.s_split : nan, nan, nan, "m"},
         {"theta_branch_deg", theta, nan, nan, "deg"},
         {"v_mean_m_per_s", v_mean, nan, nan, "m/s"},
         {"v_max_m_per_s", v_max, cR, relative_error(v_max, cR), "m/s"},  // reference: Rayleigh speed (bound)
         {"tip_gap_surface_mid_m", gap, nan, nan, "m"},
+        {"tip_lead_mid_mean_m", lead, nan, nan, "m"},
+        {"damaged_nodes_mid", damaged(mid), nan, nan, "-"},
+        {"damaged_nodes_surface", damaged(bottom), nan, nan, "-"},
         {"steps", static_cast<double>(info.steps), nan, nan, "-"},
         {"wall_time", info.wall, nan, nan, "s"}};
     pd::io::write_summary(out / "summary.csv", rows);
