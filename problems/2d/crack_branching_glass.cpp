@@ -180,7 +180,7 @@ static int run(int argc, char** argv)
     const Result& r = results.front();
     const Published p = published(material, r.dx);
     const double theta = 0.5 * (r.theta_up - r.theta_low);  // mean half-angle of the two branches [deg]
-    const double nu = mat.nu(), cs = std::sqrt(E / (2 * (1 + nu) * rho)), cR = cs * (0.862 + 1.14 * nu) / (1 + nu);  // Viktorov
+    const double cR = pd::crack::rayleigh_speed(E, mat.nu(), rho);  // Viktorov (crack_run.hpp)
     using pd::io::relative_error;
     const std::vector<pd::io::SummaryRow> rows{
         {"t_init_s", r.t_init, p.t_init, relative_error(r.t_init, p.t_init), "s"},

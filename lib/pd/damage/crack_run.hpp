@@ -1,8 +1,10 @@
-// The 2D PMB fracture run shared by the crack drivers (problems/2d: crack branching, Kalthoff-Winkler,
-// grid orientation): bond-based PMB with omega = 1 (spec/002 sec. 2.3; c = 9E/(pi delta^3 t) plane
-// stress, 48E/(5 pi delta^3) plane strain, i.e. the implied nu = 1/3 or 1/4), critical stretch
-// s0 from Gc (spec/002 eq. 2.15b/c), velocity Verlet (verlet.hpp) with the given boundary, and
-// damage phi (eq. 2.17) handed to a sampler every `every` steps and after the last.
+// The PMB fracture run shared by the crack drivers (problems/2d: crack branching, Kalthoff-Winkler,
+// grid orientation; problems/3d: crack branching): bond-based PMB with omega = 1 (spec/002 sec. 2.3;
+// c = 9E/(pi delta^3 t) plane stress, 48E/(5 pi delta^3) plane strain, 12E/(pi delta^4) in 3D, i.e.
+// the implied nu = 1/3, 1/4, 1/4), critical stretch s0 from Gc (spec/002 eq. 2.15a/b/c), velocity
+// Verlet (verlet.hpp) with the given boundary, and damage phi (eq. 2.17) handed to a sampler every
+// `every` steps and after the last. Rayleigh speed by Viktorov's approximation
+// c_R = c_s (0.862 + 1.14 nu)/(1 + nu), c_s = sqrt(E / (2 (1 + nu) rho)).
 // Also the CSV writers of the damage field and of the crack-path level curve (crack_metrics.hpp).
 #pragma once
 #include "pd/damage/crack_metrics.hpp"
@@ -17,6 +19,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pd::crack {
@@ -29,6 +32,19 @@ struct Material2D {
     double nu() const { return plane == Plane::stress ? 1.0 / 3.0 : 0.25; }  // implied by 2D PMB
 };
 
+struct Material3D {
+    double E = 0;     // Young's modulus [Pa]
+    double rho = 0;   // density [kg/m^3]
+    double Gc = 0;    // fracture energy [J/m^2]
+    double nu() const { return 0.25; }  // implied by 3D PMB
+};
+
+// Rayleigh wave speed [m/s] (Viktorov's approximation, see header).
+inline double rayleigh_speed(double E, double nu, double rho)
+{
+    return std::sqrt(E / (2 * (1 + nu) * rho)) * (0.862 + 1.14 * nu) / (1 + nu);
+}
+
 struct RunInfo {
     double s0 = 0, c = 0;          // critical stretch [-], micromodulus [N/m^6 per unit thickness]
     double dt = 0, dt_crit = 0;    // time step and Silling-Askari critical step [s]
@@ -38,7 +54,7 @@ struct RunInfo {
 };
 
 // PMB model, s0 and the critical step for the body (unit thickness) and bonds.
-inline PMB make_pmb_2d(const Material2D& mat, const Bonds& bonds, double delta, RunInfo& info)
+inline PMB make_pmb(const Material2D& mat, const Bonds& bonds, double delta, RunInfo& info)
 {
     const PMB::Params p{.material = Elastic::from_E_nu(mat.E, mat.nu()), .dim = 2, .plane = mat.plane};
     PMB model(p, Influence{}, bonds);
@@ -48,22 +64,33 @@ inline PMB make_pmb_2d(const Material2D& mat, const Bonds& bonds, double delta, 
     return model;
 }
 
+// 3D: c = 18 K/(pi delta^4) = 12 E/(pi delta^4) at nu = 1/4 (spec/002 eq. 2.13a), s0 of eq. 2.15a.
+inline PMB make_pmb(const Material3D& mat, const Bonds& bonds, double delta, RunInfo& info)
+{
+    const PMB::Params p{.material = Elastic::from_E_nu(mat.E, mat.nu()), .dim = 3};
+    PMB model(p, Influence{}, bonds);
+    info.c = model.c;
+    info.s0 = s0_pmb(mat.Gc, mat.E, delta, 3, Plane::stress);
+    info.dt_crit = critical_step_silling_askari(bonds, std::vector<double>(bonds.nodes(), mat.rho), model.c).dt;
+    return model;
+}
+
 // Integrates to t_end with steps dt <= min(dt_max, safety dt_crit) (equal steps); sample(t, phi, sim)
 // every `every` steps and at the end; bonds touching no_fail nodes never break. Unstable propagates (files written by the sampler stay on disk).
-template <class Sample>
-RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat, double delta, const Boundary<2>& boundary,
-                        double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {})
+template <int D, class Mat, class Sample>
+RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, double delta, const Boundary<D>& boundary,
+                     double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {})
 {
     io::Timer timer;
     RunInfo info;
     if (!bonds.has_damage()) bonds.enable_damage();
-    PMB model = make_pmb_2d(mat, bonds, delta, info);
+    PMB model = make_pmb(mat, bonds, delta, info);
     const double dt_bound = std::min(dt_max, safety * info.dt_crit);
     info.steps = static_cast<long>(std::ceil(t_end / dt_bound * (1 - 1e-12)));  // 1e-12: t_end a multiple of dt_bound
     info.dt = t_end / info.steps;
     CriticalStretch damage{.s0 = info.s0, .s0_bond = {}, .no_fail = {}};
     if (!no_fail.empty()) damage.protect(no_fail, body.size());
-    Explicit<2, PMB> sim(body, bonds, model, mat.rho);
+    Explicit<D, PMB> sim(body, bonds, model, mat.rho);
     sim.boundary = boundary;
     sim.damage = &damage;
     sim.start();
@@ -77,6 +104,12 @@ RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat
     info.broken = sim.broken_bonds;
     info.wall = timer.seconds();
     return info;
+}
+template <class Sample>
+RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat, double delta, const Boundary<2>& boundary,
+                        double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {})
+{
+    return run_fracture<2>(body, bonds, mat, delta, boundary, dt_max, safety, t_end, every, std::forward<Sample>(sample), no_fail);
 }
 
 // Pre-crack as broken bonds (intact = 0 where cut(i, j), i.e. the bond crosses the crack), so
