@@ -1,19 +1,20 @@
 // pd_run -- explicit dynamics of a user's point cloud (issue 2, "Users' own point clouds"), the CSV
 // counterpart of Peridigm's text-file discretisation. Not a verification case: it has no reference
 // and no --quick/--check; the physics it runs is verified by the tests of the library.
-// Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed, T0, T_fixed] (pd/io/point_cloud.hpp).
+// Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed, no_fail, T0, T_fixed] (pd/io/point_cloud.hpp).
 // Model PMB, LPS, LPS+SCF, PALS (3D) or correspondence (2D/3D, linear small-strain law, Littlewood
 // hourglass --hourglass C) (single material; block ids are passed through to the VTU files only), bond
 // family |xi| <= delta, velocity Verlet (pd::Explicit), fixed points held at their initial
 // displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
-// c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14).
+// c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14). --s0: critical-stretch bond breaking (spec/000c sec. 2.2)
+// with the point damage phi in the state files (pd/damage/critical_stretch.hpp).
 // Heat conduction (issue 4, problems/pd_run_heat.hpp): --heat agwai|correspondence adds a temperature
 // field (columns T0, T_fixed) integrated by explicit/implicit Euler or CVODE; --mechanics off runs it alone.
 // Run:    pd_run --input cloud.csv --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3 --steps 1000
 //         [--model pmb|lps|scf|pals|correspondence] [--hourglass C] [--dim 1|2|3] [--output-steps 0,500,1000]
-//         [--vtu-every 100] [--heat agwai --k 50 --cv 500 [--mechanics off --thermal-steps 100]] [--help]
+//         [--vtu-every 100] [--s0 1e-3] [--heat agwai --k 50 --cv 500 [--mechanics off --thermal-steps 100]] [--help]
 // Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J),
-//         DIR/state_stepNNNN.csv (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,T,Q_W_m3]), DIR/state_stepNNNN.vtu +
+//         DIR/state_stepNNNN.csv (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,damage][,T,Q_W_m3]), DIR/state_stepNNNN.vtu +
 //         state.pvd, with --heat DIR/heat.csv (thermal_step,t_s,heat_J,T_min,T_max).
 // Exit status: 0 done; 2 invalid input (one line naming the option or file:line); 3 unstable run
 // (files written before the blow-up are kept). User page: reports/pd_run.md.
@@ -49,6 +50,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     family.influence = cfg.influence;
     family.partial_volume = cfg.partial_volume;
     pd::Bonds bonds = pd::build_bonds(body, cfg.delta, family);
+    if (cfg.s0 > 0) bonds.enable_damage();  // before the models: they and the heat see the intact flags
     long isolated = 0;
     for (std::size_t i = 0; i < body.size(); ++i) isolated += bonds.begin(i) == bonds.end(i);
     std::printf("points %zu, bonds %zu (ordered pairs), blocks %ld, fixed %ld, isolated %ld\n", body.size(),
@@ -108,7 +110,7 @@ int main(int argc, char** argv)
     // 1. Options (SI), cross-checks, echo and params.csv.
     const double automatic = std::numeric_limits<double>::quiet_NaN();
     pd::io::Options opt(program, "Explicit dynamics (velocity Verlet) and heat conduction of a point cloud read from CSV; see reports/pd_run.md.");
-    const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed,T0,T_fixed]");
+    const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed,no_fail,T0,T_fixed]");
     const std::string& model = opt.add_string("model", "pmb", "material model (scf = LPS with the shear correction factor)",
                                               {"pmb", "lps", "scf", "pals", "correspondence"});
     const std::string& surface = opt.add_string("surface-correction", "none",
@@ -132,11 +134,13 @@ int main(int argc, char** argv)
     const std::string& out_steps = opt.add_string("output-steps", "", "steps written as state_stepNNNN.csv, e.g. 0,100,400 (default: last step; none: no state)");
     const int& energy_every = opt.add_int("energy-every", 10, "energy.csv row every k steps (and at the last step)");
     const int& vtu_every = opt.add_int("vtu-every", 0, "VTU snapshot every k steps and at the last step (0 = off)");
+    const double& s0 = opt.add("s0", automatic, "critical stretch > 0: a bond stretched beyond it breaks for good; state "
+                                                "CSV and VTU get the point damage (nan = no bond breaking)");
     const std::string& out = opt.add_string("out", "pd_run_out", "output folder");
     const int& threads = opt.add_int("threads", 0, "OpenMP threads (0 = OpenMP default)");
     const std::string& mech = opt.add_string("mechanics", "on", "off: heat conduction only (needs --heat)", {"on", "off"});
     const pd_run::HeatOptions heat = pd_run::add_heat_options(opt, automatic);
-    for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt", "k", "cv", "dt-thermal"})
+    for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt", "k", "cv", "dt-thermal", "s0"})
         opt.require_positive(name);
     opt.require_at_least("thermal-steps", 0);
     opt.require_range("dim", 1, 3);
@@ -156,7 +160,7 @@ int main(int argc, char** argv)
     if (surface == "energy" && model != "pmb") fail("option --surface-correction energy applies to --model pmb only");
     const bool mechanics = mech == "on";
     if (!mechanics && heat.heat == "none") fail("option --mechanics off needs --heat agwai|correspondence");
-    for (const char* name : {"E", "nu", "K", "G", "model", "hourglass", "surface-correction", "plane", "dt", "steps"})
+    for (const char* name : {"E", "nu", "K", "G", "model", "hourglass", "surface-correction", "plane", "dt", "steps", "s0"})
         if (!mechanics && opt.given(name)) fail(std::string("option --") + name + " applies to the mechanics (not --mechanics off)");
     pd_run::check_heat_options(opt, heat, mechanics, fail);
 
@@ -181,6 +185,7 @@ int main(int argc, char** argv)
                 .correction = pd::parse_thermal_correction(heat.correction), .every = energy_every};
     cfg.energy_every = energy_every;
     cfg.vtu_every = vtu_every;
+    cfg.s0 = opt.given("s0") ? s0 : 0.0;
     try {
         cfg.output_steps = pd::io::parse_output_steps(out_steps, cfg.steps);
     } catch (const std::invalid_argument& e) {

@@ -34,6 +34,7 @@ inline void check_cloud(const pd::io::PointCloud& pc, const pd::io::Options& opt
     const std::string file = pc.path.string();
     for (const char* c : {"T0", "T_fixed"})
         if (!heat && pc.has_column(c)) fail(file + ": column '" + c + "' needs --heat agwai|correspondence");
+    if (pc.has_column("no_fail") && !opt.given("s0")) fail(file + ": column 'no_fail' needs --s0 (bond breaking)");
     for (const char* c : {"ux", "uy", "uz", "vx", "vy", "vz", "fixed"})
         if (!mechanics && pc.has_column(c)) fail(file + ": column '" + c + "' needs the mechanics (not --mechanics off)");
     if (heat && !pc.has_column("T0") && !opt.given("T0")) fail("option --T0 is required: " + file + " has no T0 column");

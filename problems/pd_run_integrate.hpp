@@ -37,6 +37,7 @@ struct Run {
     pd::PartialVolume partial_volume = pd::PartialVolume::none;
     double dt = 0;                                     // [s]; NaN = automatic
     long steps = 0, energy_every = 1, vtu_every = 0;
+    double s0 = 0;                                     // critical stretch [-]; 0 = no bond breaking
     std::vector<long> output_steps;                    // sorted, unique
     std::filesystem::path out;
     bool mechanics = true;                             // false: heat only
@@ -119,6 +120,10 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
                                         pd::TimeFunction::constant(pc.u[d][i])});
     }
     if (!held.empty()) sim.boundary.fix(held);
+    pd::CriticalStretch damage;  // bond breaking, only with --s0
+    damage.s0 = cfg.s0;
+    if (pc.no_fail_count() > 0) damage.no_fail = pc.no_fail;
+    if (cfg.s0 > 0) sim.damage = &damage;
     sim.start();
     auto thermal_target = [&](long n) { return heat ? long(std::floor(double(n) * cfg.dt / heat->dt * (1 + 1e-12))) : 0L; };
     const long thermal_total = thermal_target(cfg.steps);
@@ -134,6 +139,11 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
         if (e_step) energy.row({n, sim.t, last.kinetic, last.strain, last.external_work, last.total()});
         if (!(s_step || v_step)) return;
         pd::io::StateFields<D> f{.u = &sim.u, .v = &sim.v};
+        std::vector<double> phi;  // point damage [-]
+        if (cfg.s0 > 0) {
+            phi = pd::point_damage(bonds);
+            f.damage = &phi;
+        }
         if (heat) f.T = &heat->T, f.Q = &heat->heat_flow();
         if (s_step) pd::io::write_state<D>(cfg.out, n, pc, f);
         if (v_step) pd::io::write_state_vtu<D>(cfg.out, n, sim.t, pc, f, *pvd);
@@ -148,6 +158,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     if (status != 0) return status;
     std::printf("\n  step %ld  t = %.6g s  kinetic %.6g J  strain %.6g J  external work %.6g J  total %.6g J\n",
                 cfg.steps, sim.t, last.kinetic, last.strain, last.external_work, last.total());
+    if (cfg.s0 > 0) std::printf("  broken bonds %ld of %zu (ordered pairs)\n", sim.broken_bonds, bonds.size());
     if (heat) report_heat(*heat);
     std::printf("%s: done, %ld steps in %.3g s; wrote %s\n", program, cfg.steps, timer.seconds(), cfg.out.string().c_str());
     return 0;

@@ -114,6 +114,14 @@ TEST(IoOptions, UsageListsDefaultsUnitsAndHelp)
     EXPECT_NE(u.find("--model {pmb,lps}"), std::string::npos);
     EXPECT_NE(u.find("--quick"), std::string::npos);
     EXPECT_NE(u.find("--help"), std::string::npos);
+    // --out promises only what every driver writes; a driver writing VTU says so itself.
+    EXPECT_NE(u.find("output folder (CSV files and params.csv)"), std::string::npos);
+    EXPECT_EQ(u.find("VTU"), std::string::npos);
+    Options vtu_driver{"prog", "writes VTU"};
+    pd::io::add_standard(vtu_driver, "out", "output folder (CSV, params.csv, damage.vtu)");
+    std::ostringstream os2;
+    vtu_driver.print_usage(os2);
+    EXPECT_NE(os2.str().find("output folder (CSV, params.csv, damage.vtu)"), std::string::npos);
 }
 
 TEST(IoOptionsDeathTest, HelpExitsZero)

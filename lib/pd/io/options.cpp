@@ -327,11 +327,11 @@ void Options::print_usage(std::ostream& os) const
 
 void Options::fail(const std::string& message) const { fail_input(program_, message); }
 
-void add_standard(Options& opt, const std::string& default_out)
+void add_standard(Options& opt, const std::string& default_out, const std::string& out_help)
 {
     opt.add_flag("quick", "coarse discretisation that runs in seconds");
     opt.add_flag("check", "exit non-zero when the documented tolerance is missed");
-    opt.add_string("out", default_out, "output folder (CSV, params.csv, VTU)");
+    opt.add_string("out", default_out, out_help);
     opt.add_int("threads", 0, "OpenMP threads (0 = OpenMP default)");
     opt.require_at_least("threads", 0);
 }

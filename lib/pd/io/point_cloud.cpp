@@ -18,7 +18,7 @@ const std::array<const char*, 3> coord_names{"x", "y", "z"};
 const std::array<const char*, 3> u_names{"ux", "uy", "uz"};
 const std::array<const char*, 3> v_names{"vx", "vy", "vz"};
 const std::vector<std::string> allowed_columns{"x", "y", "z", "volume", "block", "vx", "vy", "vz",
-                                               "ux", "uy", "uz", "fixed", "T0", "T_fixed"};
+                                               "ux", "uy", "uz", "fixed", "no_fail", "T0", "T_fixed"};
 
 [[noreturn]] void fail_at(const std::filesystem::path& p, long line, const std::string& column, const std::string& what)
 {
@@ -38,6 +38,8 @@ bool PointCloud::has_column(const std::string& name) const
 long PointCloud::blocks() const { return static_cast<long>(std::set<long>(block.begin(), block.end()).size()); }
 
 long PointCloud::fixed_count() const { return std::count(fixed.begin(), fixed.end(), std::uint8_t{1}); }
+
+long PointCloud::no_fail_count() const { return std::count(no_fail.begin(), no_fail.end(), std::uint8_t{1}); }
 
 PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
 {
@@ -61,7 +63,7 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
     for (std::size_t c = 0; c < t.header.size(); ++c) {
         const std::string& name = t.header[c];
         if (std::find(allowed_columns.begin(), allowed_columns.end(), name) == allowed_columns.end())
-            fail_at(path, t.header_line, name, "unknown column (allowed: x,y,z,volume,block,vx,vy,vz,ux,uy,uz,fixed,T0,T_fixed)");
+            fail_at(path, t.header_line, name, "unknown column (allowed: x,y,z,volume,block,vx,vy,vz,ux,uy,uz,fixed,no_fail,T0,T_fixed)");
         if (std::find(t.header.begin(), t.header.begin() + c, name) != t.header.begin() + c)
             fail_at(path, t.header_line, name, "column given twice");
     }
@@ -69,7 +71,7 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
         if (!t.has_column(req)) fail_at(path, t.header_line, req, "required column missing (header must name x,y,z,volume)");
     if (t.rows.empty()) fail_at(path, t.header_line, "", "no points after the header");
 
-    // 3. Values: finite numbers, positive volumes, integer blocks, 0/1 fixed flags.
+    // 3. Values: finite numbers, positive volumes, integer blocks, 0/1 fixed and no_fail flags.
     const std::size_t n = t.rows.size();
     auto value = [&](std::size_t r, const std::string& name) {
         const std::size_t c = t.column(name);
@@ -99,6 +101,7 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
     }
     pc.block.assign(n, 1);
     pc.fixed.assign(n, 0);
+    pc.no_fail.assign(n, 0);
     pc.line.resize(n);
     for (std::size_t r = 0; r < n; ++r) {
         const long line = t.rows[r].line;
@@ -115,6 +118,11 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
             const double f = value(r, "fixed");
             if (f != 0 && f != 1) fail_at(path, line, "fixed", "must be 0 or 1, got " + t.rows[r].fields[t.column("fixed")]);
             pc.fixed[r] = f == 1;
+        }
+        if (t.has_column("no_fail")) {
+            const double f = value(r, "no_fail");
+            if (f != 0 && f != 1) fail_at(path, line, "no_fail", "must be 0 or 1, got " + t.rows[r].fields[t.column("no_fail")]);
+            pc.no_fail[r] = f == 1;
         }
         for (int d = 0; d < 3; ++d)
             if (pc.fixed[r] && pc.v[d][r] != 0)

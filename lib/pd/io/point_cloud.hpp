@@ -7,6 +7,7 @@
 //   vx, vy, vz            optional initial velocity [m/s] (absent = 0)
 //   ux, uy, uz            optional initial displacement [m] (absent = 0)
 //   fixed                 optional 0/1: 1 = the point is held at its initial displacement
+//   no_fail               optional 0/1: 1 = the bonds of the point never break (with bond breaking)
 //   T0                    optional initial temperature [K or C] (absent: NaN, the run's --T0)
 //   T_fixed               optional held temperature [same unit]; an empty field = free (NaN)
 // Any other column is an error (a misspelt "vX" must not be ignored silently).
@@ -40,6 +41,7 @@ struct PointCloud {
     std::array<std::vector<double>, 3> v;  // initial velocity [m/s]
     std::vector<long> block;               // block id (1 when the column is absent)
     std::vector<std::uint8_t> fixed;       // 1 = held
+    std::vector<std::uint8_t> no_fail;     // 1 = bonds of the point never break
     std::vector<double> T0;                // initial temperature [K or C]; NaN = not given
     std::vector<double> T_fixed;           // held temperature [K or C]; NaN = free
     std::vector<long> line;                // 1-based line of each point in the file
@@ -49,6 +51,7 @@ struct PointCloud {
     bool has_column(const std::string& name) const;
     long blocks() const;                   // number of distinct block ids
     long fixed_count() const;
+    long no_fail_count() const;
 };
 
 // Reads and validates a point cloud for a `dim`-dimensional run (dim = 1, 2 or 3; see header).
