@@ -70,7 +70,7 @@ static int run(int argc, char** argv)
     double& window = opt.add("window", 2e-6, "crack-speed window (spec/002: 2 us)", "s");
     double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
-    pd::io::add_standard(opt, "reports/3d/crack_branching");
+    pd::io::add_standard(opt, "reports/3d/crack_branching", "output folder (CSV files, params.csv, damage.vtu)");
     for (const char* o : {"E", "rho", "Gc", "sigma", "length", "height", "thickness", "crack", "dx", "dt", "dt-factor", "t-end", "window"})
         opt.require_positive(o);
     opt.require_at_least("m", 1);

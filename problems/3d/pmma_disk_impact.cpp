@@ -132,7 +132,7 @@ static int run(int argc, char** argv)
     int& seed = opt.add_int("seed", 1, "random field seed");
     double& t_end = opt.add("t-end", 4e-3, "end time (quick 1.2e-3)", "s");
     double& dt_factor = opt.add("dt-factor", 0.5, "time step / Silling-Askari critical step (PMB bound; LPS at nu 0.35 is unstable at 0.8)");
-    pd::io::add_standard(opt, "reports/3d/pmma_disk_impact");
+    pd::io::add_standard(opt, "reports/3d/pmma_disk_impact", "output folder (CSV files, params.csv, damage.vtu)");
     for (const char* o : {"E", "rho", "diameter", "thickness", "r-clamp", "delta", "dx", "mass", "tip-diameter", "v0", "penalty",
                           "s-mean", "t-end", "dt-factor"})
         opt.require_positive(o);

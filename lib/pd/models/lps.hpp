@@ -9,7 +9,7 @@
 // 3D is the source's model. 1D is V1's bar (t = omega E theta |xi| / m). 2D uses the in-plane
 // split e_d = e - theta |xi|/2 with kappa_2D = K + G/3 (plane strain) or 9KG/(3K+4G) (plane
 // stress): an isotropic stretch s gives W = 2 kappa_2D s^2 and a pure shear eps = diag(a, -a)
-// gives W = 2 G a^2, the classical in-plane energies (tests/test_models.cpp checks both).
+// gives W = 2 G a^2, the classical in-plane energies (tests/test_model_constants.cpp checks both).
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y|; theta_i and the forces sum only intact bonds.
 // Damage rule (Params::weighted_volume; tests/test_damage_models.cpp):
 //   intact (default): m_i (and SCF_i when it was computed from positions) sums the intact bonds;
