@@ -134,7 +134,7 @@ static int run(int argc, char** argv)
                 const pd::crack::Mask crack = connected(p);
                 tips.push(t, pd::crack::tip_along(body.x, p, origin, dir, threshold, crack));
                 phi = std::move(p);
-            }, protect);
+            }, protect, !quick);
 
         // 6. Metrics: initiation (tip one dx beyond its start), branch (crack_metrics.hpp rule,
         //    confirm over 4 mm, branch lines fitted over 10 mm), speeds over the window.

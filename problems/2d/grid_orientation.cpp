@@ -128,7 +128,7 @@ static int run(int argc, char** argv)
                 std::numeric_limits<long>::max(), [&](double, std::vector<double> p, auto&) {
                     if (seeds.empty()) seeds = p;
                     phi = std::move(p);
-                });
+                }, {}, !quick);
 
             // 6. Path of the crack connected to the pre-crack, against the line y = L/2.
             pd::crack::Mask s(body.size());

@@ -120,7 +120,7 @@ static int run(int argc, char** argv)
                 h_up.push(t, pd::crack::tip_farthest(body.x, p, tip_up, threshold, crack_of(p, side_up)));
                 h_low.push(t, pd::crack::tip_farthest(body.x, p, tip_low, threshold, crack_of(p, side_low)));
                 phi = std::move(p);
-            });
+            }, {}, !quick);
 
         // 6. Metrics: angle of each crack from its damaged nodes beyond 2 delta of the notch tip.
         auto angle = [&](const pd::Vec<2>& tip, const pd::crack::Mask& side) {

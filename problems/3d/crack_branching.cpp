@@ -127,7 +127,7 @@ static int run(int argc, char** argv)
             phi = std::move(p);
             u_max = 0;
             for (std::size_t i = 0; i < body.size(); ++i) u_max = std::max(u_max, norm(sim.u[i]));
-        });
+        }, {}, !quick);
 
     // 6. Metrics on the mid layer (crack_metrics rule: confirm over 4 mm, fit over 10 mm) and, for
     //    comparison, on the bottom surface layer; surface-mid tip gap over the whole history.

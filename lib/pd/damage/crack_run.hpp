@@ -77,9 +77,11 @@ inline PMB make_pmb(const Material3D& mat, const Bonds& bonds, double delta, Run
 
 // Integrates to t_end with steps dt <= min(dt_max, safety dt_crit) (equal steps); sample(t, phi, sim)
 // every `every` steps and at the end; bonds touching no_fail nodes never break. Unstable propagates (files written by the sampler stay on disk).
+// show_progress: the progress line of io/timer.hpp on stderr (drivers pass !quick; it stays off in CI logs).
 template <int D, class Mat, class Sample>
 RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, double delta, const Boundary<D>& boundary,
-                     double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {})
+                     double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {},
+                     bool show_progress = false)
 {
     io::Timer timer;
     RunInfo info;
@@ -96,8 +98,10 @@ RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, double d
     sim.start();
     sample(sim.t, point_damage(bonds), sim);
     const long energy_every = 100;  // stability guard cadence (steps)
+    io::Progress progress("fracture run", info.steps, show_progress);
     for (long n = 1; n <= info.steps; ++n) {
         sim.step(info.dt);
+        progress.update(n);
         if (n % energy_every == 0) sim.check_energy();
         if (n % every == 0 || n == info.steps) sample(sim.t, point_damage(bonds), sim);
     }
@@ -107,9 +111,11 @@ RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, double d
 }
 template <class Sample>
 RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat, double delta, const Boundary<2>& boundary,
-                        double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {})
+                        double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {},
+                        bool show_progress = false)
 {
-    return run_fracture<2>(body, bonds, mat, delta, boundary, dt_max, safety, t_end, every, std::forward<Sample>(sample), no_fail);
+    return run_fracture<2>(body, bonds, mat, delta, boundary, dt_max, safety, t_end, every, std::forward<Sample>(sample), no_fail,
+                           show_progress);
 }
 
 // Pre-crack as broken bonds (intact = 0 where cut(i, j), i.e. the bond crosses the crack), so
