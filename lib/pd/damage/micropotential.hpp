@@ -37,6 +37,7 @@
 #include "pd/lattice.hpp"
 #include "pd/parallel.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -124,13 +125,16 @@ struct CriticalMicropotential {
             y_ = y;
             for (int c = 0; c < out_.components; ++c) std::swap(g_new_[c], g_old_[c]);
         } else if (out_.components == 1) {
-            pair_pass(b, y, [&](std::int64_t k, const Vec<D>& Y, const Vec<D>& Yn, const Vec<D>& dY) {
-                return 0.5 * (g_old_[0][k] * dot(Yn, dY) + g_new_[0][k] * dot(Y, dY));  // g = t Y (ordinary)
+            const double *t_old = g_old_[0].data(), *t_new = g_new_[0].data();
+            pair_pass(b, y, [=](std::int64_t k, const Vec<D>& Y, const Vec<D>& Yn, const Vec<D>& dY) {
+                return 0.5 * (t_old[k] * dot(Yn, dY) + t_new[k] * dot(Y, dY));  // g = t Y (ordinary)
             });
         } else {
-            pair_pass(b, y, [&](std::int64_t k, const Vec<D>&, const Vec<D>&, const Vec<D>& dY) {
+            const double *go[3] = {}, *gn[3] = {};
+            for (int a = 0; a < D; ++a) { go[a] = g_old_[a].data(); gn[a] = g_new_[a].data(); }
+            pair_pass(b, y, [=](std::int64_t k, const Vec<D>&, const Vec<D>&, const Vec<D>& dY) {
                 double d = 0;
-                for (int a = 0; a < D; ++a) d += (g_old_[a][k] + g_new_[a][k]) * dY[a];
+                for (int a = 0; a < D; ++a) d += (go[a][k] + gn[a][k]) * dY[a];
                 return 0.5 * d;
             });
         }
@@ -153,15 +157,27 @@ private:
     void pair_pass(const Bonds& b, const Field<D>& y, Work work)
     {
         const bool scaled = !jc_ratio.empty();
+        const int* partner = b.partner.data();
+        const std::int64_t* reverse = b.reverse.data();
+        const std::uint8_t* intact = b.intact.data();
+        const double* volume = b.volume.data();
+        double* wk = w.data();
+        const double *yc[3] = {}, *ync[3] = {};
+        for (int a = 0; a < D; ++a) { yc[a] = y.c[a].data(); ync[a] = y_.c[a].data(); }
         parallel_for(b.nodes(), [&](std::size_t i) {
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const int j = b.partner[k];
-                if (static_cast<std::size_t>(j) < i || !b.intact[k]) continue;
-                const Vec<D> Y = y[j] - y[i], Yn = y_[j] - y_[i];
-                double dw = work(k, Y, Yn, Y - Yn) / b.volume[k];  // g_k = f_k / (beta V_j) (header)
-                if (scaled) dw *= 0.5 * (jc_ratio[i] + jc_ratio[j]);  // 000c eq. 8.23
-                w[k] += dw;
-                w[b.reverse[k]] += dw;
+            double yi[D], yni[D];
+            for (int a = 0; a < D; ++a) { yi[a] = yc[a][i]; yni[a] = ync[a][i]; }
+            const std::int64_t ke = b.end(i);
+            for (std::int64_t k = b.begin(i); k < ke; ++k) {
+                const int j = partner[k];
+                if (static_cast<std::size_t>(j) < i || !intact[k]) continue;
+                Vec<D> Y, Yn;
+                for (int a = 0; a < D; ++a) { Y[a] = yc[a][j] - yi[a]; Yn[a] = ync[a][j] - yni[a]; }
+                double d = work(k, Y, Yn, Y - Yn) / volume[k];  // g_k = f_k / (beta V_j) (header)
+                if (scaled) d *= 0.5 * (jc_ratio[i] + jc_ratio[j]);  // 000c eq. 8.23
+                const double w_new = wk[k] + d;  // w_ji == w_ij before (induction), so it needs no load
+                wk[k] = w_new;
+                wk[reverse[k]] = w_new;
             }
         });
         for (int a = 0; a < D; ++a) y_.c[a] = y.c[a];
