@@ -271,13 +271,9 @@ struct Correspondence {
         // Bond k's part of node_force, omega V_j P_i K_i^-1 xi [N/m^3] (per-bond output, bond_loop.hpp).
         Vec<D> node_share(std::size_t i, std::int64_t k, int j) const
         {
-            const double* Ai = A + DD * i;
-            Vec<D> f;
-            for (int a = 0; a < D; ++a) {
-                double s = 0;
-                for (int c = 0; c < D; ++c) s += Ai[a + D * c] * (x[c][j] - x[c][i]);
-                f[a] = wV[k] * s;
-            }
+            Vec<D> f;  // zero
+            for (int a = 0; a < D; ++a)
+                for (int c = 0; c < D; ++c) f[a] += wV[k] * A[DD * i + a + D * c] * (x[c][j] - x[c][i]);
             return f;
         }
         Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const
@@ -319,9 +315,8 @@ struct Correspondence {
         // The whole f_i (bond_loop.hpp, family kernel), 3D: the same arithmetic as bond_force, bond
         // by bond in the same lanes and order. The partner products A_j xi and (F_i + F_j) xi are
         // taken within the bond (3 broadcast xi components times 3 column loads each), transposed,
-        // and the rest (Y, hourglass projection, division, sums) runs across 4 bonds. Out: also
-        // stores each bond's whole force, the i-end term A_i xi omega V_j included, in out[d][k]
-        // (per-bond output, bond_loop.hpp); the sum f_i is the same with or without it.
+        // and the rest (Y, hourglass projection, division, sums) runs across 4 bonds. Out: also stores each
+        // bond's whole force (A_i xi omega V_j included) in out[d][k] (bond_loop.hpp); f_i is unchanged.
         template <bool Damaged, bool Out = false>
             requires(D == 3)
         Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y, double* const* out = nullptr) const
@@ -387,8 +382,7 @@ struct Correspondence {
                     }
                     if constexpr (Out) {
                         transpose3(o, Ox);
-                        for (int d = 0; d < 3; ++d)
-                            _mm256_storeu_pd(out[d] + k0, _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], f[d]), keep));
+                        for (int d = 0; d < 3; ++d) _mm256_storeu_pd(out[d] + k0, _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], f[d]), keep));
                     }
                     if constexpr (Damaged)
                         for (int d = 0; d < 3; ++d) f[d] = _mm256_mul_pd(f[d], keep);
@@ -406,10 +400,8 @@ struct Correspondence {
                 Vec<D> fk = bond_force(i, k, j, Y);
                 if constexpr (Damaged) fk *= static_cast<double>(b.intact[k]);
                 for (int d = 0; d < 3; ++d) sum.s[d][l] += fk[d];
-                if constexpr (Out) {
-                    fk += static_cast<double>(b.intact[k]) * node_share(i, k, j);
-                    for (int d = 0; d < 3; ++d) out[d][k] = fk[d];
-                }
+                if constexpr (Out) fk += static_cast<double>(b.intact[k]) * node_share(i, k, j);
+                if constexpr (Out) for (int d = 0; d < 3; ++d) out[d][k] = fk[d];
             }
             const Vec<D> fn = node_force(i);
             Vec<D> r;
