@@ -27,6 +27,14 @@
 // which returns the whole f_i (node term included) and may vectorise its own way, but must add
 // bond begin(i) + l + 8 m into partial sum l and reduce as LaneSum does, so that the result does
 // not depend on the threads (correspondence: the partner matrices read within the bond, 3D AVX2).
+// Per-bond output (optional, for critical-micropotential damage): internal_force(model, bonds, y, f, &out)
+// also stores each intact bond's force density with both ends' states included, bond k in entry k of
+//   ordinary models:     out.c[0][k] = t_k, the bond_scalar (force on i is t_k Y)  [N/m^7 in 3D]
+//   non-ordinary models: out.c[d][k] = f_k[d]                                      [N/m^3]
+// (broken bonds: 0), out.components = 1 or D accordingly. A kernel with node_force must then also supply
+//   Vec<D> node_share(std::size_t i, std::int64_t k, int j) const;  // bond k's part of node_force [N/m^3]
+// and a family kernel takes the output as family_force<Damaged, true>(i, bonds, y, out.c). Without the
+// output (default) the passes compile as before (template flag Out = false): no store, no branch.
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
 // without that array (if constexpr).
@@ -44,8 +52,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 
 namespace pd {
+
+// Per-bond force output of the bond pass (header): components arrays of bonds.size() doubles.
+struct BondForces {
+    int components = 0;                        // 1 (ordinary: t_k) or D (non-ordinary: f_k)
+    double* c[3] = {nullptr, nullptr, nullptr};
+};
 
 namespace detail {
 
@@ -90,9 +105,13 @@ constexpr bool is_ordinary()
     else return true;
 }
 
-template <bool Damaged, int D, class Model>
-void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f)
+template <bool Damaged, bool Out, int D, class Model>
+void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondForces* out = nullptr)
 {
+    static_assert(!Out || Damaged, "the per-bond output is for damaged scenes (micropotential)");
+    double* const* g = Out ? out->c : nullptr;
+    if constexpr (Out)
+        if (out->components != (is_ordinary<Model>() ? 1 : D)) throw std::invalid_argument("bond_pass: BondForces components do not match the model");
     const std::int64_t* offset = bonds.offset.data();
     const int* partner = bonds.partner.data();
     const std::uint8_t* intact = bonds.intact.data();
@@ -101,7 +120,7 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     const double* y2 = D > 2 ? y.c[2].data() : nullptr;
     if constexpr (requires { model.template family_force<Damaged>(std::size_t{}, bonds, y); }) {
         parallel_for(bonds.nodes(), [&](std::size_t i) {
-            const Vec<D> fi = model.template family_force<Damaged>(i, bonds, y);
+            const Vec<D> fi = model.template family_force<Damaged, Out>(i, bonds, y, g);
             for (int d = 0; d < D; ++d) f.c[d][i] = fi[d];
         });
         return;
@@ -121,6 +140,7 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                 if constexpr (Damaged) ylen += 1.0 - keep;
                 double t = model.bond_scalar(i, k, j, ylen);
                 if constexpr (Damaged) t *= keep;
+                if constexpr (Out) g[0][k] = t;
                 sum.s[0][l] += t * Y0;
                 if constexpr (D > 1) sum.s[1][l] += t * Y1;
                 if constexpr (D > 2) sum.s[2][l] += t * Y2;
@@ -132,6 +152,10 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                 Vec<D> fk = model.bond_force(i, k, j, Y);  // must be finite for broken bonds too
                 if constexpr (Damaged) fk *= keep;
                 for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
+                if constexpr (Out) {
+                    if constexpr (requires { model.node_force(i); }) fk += keep * model.node_share(i, k, j);
+                    for (int d = 0; d < D; ++d) g[d][k] = fk[d];
+                }
             }
         });
         if constexpr (requires { model.node_force(i); }) {
@@ -144,20 +168,32 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
 }
 }  // namespace detail
 
-// f: internal force density at current positions y [N/m^3].
+// The bond pass alone, with the model's state of its last point pass: f [N/m^3] and, when out is
+// given (damaged scenes only), the per-bond forces (header).
 template <int D, class Model>
-void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f)
+void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondForces* out = nullptr)
 {
     if (f.size() != y.size()) f.resize(y.size());
-    if constexpr (Model::has_point_pass) model.point_pass(bonds, y);
+    if (out && !bonds.has_damage()) throw std::invalid_argument("bond_forces: the per-bond output needs bonds.enable_damage()");
     auto pass = [&](const auto& kernel) {
-        if (bonds.has_damage())
-            detail::bond_pass<true>(kernel, bonds, y, f);
+        if (out)
+            detail::bond_pass<true, true>(kernel, bonds, y, f, out);
+        else if (bonds.has_damage())
+            detail::bond_pass<true, false>(kernel, bonds, y, f);
         else
-            detail::bond_pass<false>(kernel, bonds, y, f);
+            detail::bond_pass<false, false>(kernel, bonds, y, f);
     };
     if constexpr (requires { model.with_kernel(pass); }) model.with_kernel(pass);
     else pass(model);
+}
+
+// f: internal force density at current positions y [N/m^3]; out: optional per-bond forces (header).
+template <int D, class Model>
+void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondForces* out = nullptr)
+{
+    if (f.size() != y.size()) f.resize(y.size());
+    if constexpr (Model::has_point_pass) model.point_pass(bonds, y);
+    bond_forces(model, bonds, y, f, out);
 }
 
 }  // namespace pd

@@ -268,6 +268,14 @@ struct Correspondence {
             for (int d = 0; d < D; ++d) f[d] = f_own[d][i];
             return f;
         }
+        // Bond k's part of node_force, omega V_j P_i K_i^-1 xi [N/m^3] (per-bond output, bond_loop.hpp).
+        Vec<D> node_share(std::size_t i, std::int64_t k, int j) const
+        {
+            Vec<D> f;  // zero
+            for (int a = 0; a < D; ++a)
+                for (int c = 0; c < D; ++c) f[a] += wV[k] * A[DD * i + a + D * c] * (x[c][j] - x[c][i]);
+            return f;
+        }
         Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const
         {
             const double* Aj = A + DD * static_cast<std::size_t>(j);
@@ -307,16 +315,18 @@ struct Correspondence {
         // The whole f_i (bond_loop.hpp, family kernel), 3D: the same arithmetic as bond_force, bond
         // by bond in the same lanes and order. The partner products A_j xi and (F_i + F_j) xi are
         // taken within the bond (3 broadcast xi components times 3 column loads each), transposed,
-        // and the rest (Y, hourglass projection, division, sums) runs across 4 bonds.
-        template <bool Damaged>
+        // and the rest (Y, hourglass projection, division, sums) runs across 4 bonds. Out: also stores each
+        // bond's whole force (A_i xi omega V_j included) in out[d][k] (bond_loop.hpp); f_i is unchanged.
+        template <bool Damaged, bool Out = false>
             requires(D == 3)
-        Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y) const
+        Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y, double* const* out = nullptr) const
         {
             const std::int64_t kb = b.offset[i], ke = b.offset[i + 1];
             const int* partner = b.partner.data();
             const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
-            __m256d xi_[3], yi_[3], Fi[3], acc[2][3];
+            __m256d xi_[3], yi_[3], Fi[3], Ai[3], acc[2][3];
             for (int d = 0; d < 3; ++d) {
+                Ai[d] = Out ? _mm256_load_pd(blk + BS * i + 8 * d) : _mm256_setzero_pd();
                 xi_[d] = _mm256_set1_pd(x[d][i]);
                 yi_[d] = _mm256_set1_pd(yc[d][i]);
                 Fi[d] = Hourglass ? _mm256_loadu_pd(blk + BS * i + 8 * d + 4) : _mm256_setzero_pd();
@@ -326,7 +336,7 @@ struct Correspondence {
             for (; k + detail::lanes <= ke; k += detail::lanes)
                 for (int h = 0; h < 2; ++h) {
                     const std::int64_t k0 = k + 4 * h;
-                    __m256d a[4], g[4], Ax[3], Gx[3], Yx[3];
+                    __m256d a[4], g[4], o[4], Ax[3], Gx[3], Yx[3], Ox[3];
                     int jj[4];
                     for (int q = 0; q < 4; ++q) {
                         const int j = jj[q] = partner[k0 + q];
@@ -336,6 +346,8 @@ struct Correspondence {
                         a[q] = _mm256_mul_pd(_mm256_load_pd(Bj), e[0]);
                         a[q] = _mm256_fmadd_pd(_mm256_load_pd(Bj + 8), e[1], a[q]);
                         a[q] = _mm256_fmadd_pd(_mm256_load_pd(Bj + 16), e[2], a[q]);
+                        if constexpr (Out)
+                            o[q] = _mm256_fmadd_pd(Ai[2], e[2], _mm256_fmadd_pd(Ai[1], e[1], _mm256_mul_pd(Ai[0], e[0])));
                         if constexpr (Hourglass) {
                             g[q] = _mm256_mul_pd(_mm256_add_pd(Fi[0], _mm256_load_pd(Bj + 4)), e[0]);
                             g[q] = _mm256_fmadd_pd(_mm256_add_pd(Fi[1], _mm256_load_pd(Bj + 12)), e[1], g[q]);
@@ -362,12 +374,18 @@ struct Correspondence {
                         const __m256d t = _mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(hg + k0), proj), den);
                         for (int d = 0; d < 3; ++d) f[d] = _mm256_fmadd_pd(t, Yx[d], f[d]);
                     }
+                    __m256d keep = _mm256_set1_pd(1.0);
                     if constexpr (Damaged) {
                         std::int32_t flags;
                         std::memcpy(&flags, b.intact.data() + k0, 4);
-                        const __m256d keep = _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(flags)));
-                        for (int d = 0; d < 3; ++d) f[d] = _mm256_mul_pd(f[d], keep);
+                        keep = _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(flags)));
                     }
+                    if constexpr (Out) {
+                        transpose3(o, Ox);
+                        for (int d = 0; d < 3; ++d) _mm256_storeu_pd(out[d] + k0, _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], f[d]), keep));
+                    }
+                    if constexpr (Damaged)
+                        for (int d = 0; d < 3; ++d) f[d] = _mm256_mul_pd(f[d], keep);
                     for (int d = 0; d < 3; ++d) acc[h][d] = _mm256_add_pd(acc[h][d], f[d]);
                 }
             detail::LaneSum<3> sum;
@@ -382,6 +400,8 @@ struct Correspondence {
                 Vec<D> fk = bond_force(i, k, j, Y);
                 if constexpr (Damaged) fk *= static_cast<double>(b.intact[k]);
                 for (int d = 0; d < 3; ++d) sum.s[d][l] += fk[d];
+                if constexpr (Out) fk += static_cast<double>(b.intact[k]) * node_share(i, k, j);
+                if constexpr (Out) for (int d = 0; d < 3; ++d) out[d][k] = fk[d];
             }
             const Vec<D> fn = node_force(i);
             Vec<D> r;

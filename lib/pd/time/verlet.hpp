@@ -222,8 +222,12 @@ private:
             if constexpr (requires { model.recompute(bonds); })
                 if (broke > 0) model.recompute(bonds);
         }
-        internal_force(model, bonds, y_, f_);
-        if (micropotential) micropotential->accumulate(model, bonds, y_);
+        if (micropotential) {  // the force pass hands its per-bond forces to the increments
+            internal_force(model, bonds, y_, f_, micropotential->template bond_output<Model>(bonds));
+            micropotential->accumulate(model, bonds, y_);
+        } else {
+            internal_force(model, bonds, y_, f_);
+        }
         boundary.external(t, b_);
         if (extra_force) extra_force(t, y_, v, b_);
         for (int d = 0; d < D; ++d)
