@@ -42,4 +42,28 @@ TEST(IoListOptionDeathTest, BadItemsExitTwoNamingTheOption)
     EXPECT_EXIT(sf_list("", ListValues::positive), ::testing::ExitedWithCode(2), "option --sf: empty list");
 }
 
+// Parses `--runs text` and returns the named choices among none|stretch|micro.
+std::vector<std::string> runs_list(const std::string& text)
+{
+    Options opt("prog", "list test");
+    opt.add_string("runs", "none", "runs, comma-separated");
+    const std::string arg = "--runs=" + text;
+    const char* argv[] = {"prog", arg.c_str()};
+    opt.parse(2, argv);
+    return pd::io::list_choices(opt, "runs", {"none", "stretch", "micro"});
+}
+
+TEST(IoListChoices, ItemsInOrder)
+{
+    EXPECT_EQ(runs_list("micro,none"), (std::vector<std::string>{"micro", "none"}));
+    EXPECT_EQ(runs_list("stretch"), (std::vector<std::string>{"stretch"}));
+}
+
+TEST(IoListChoicesDeathTest, UnknownOrEmptyItemsExitTwo)
+{
+    EXPECT_EXIT(runs_list("micro,visco"), ::testing::ExitedWithCode(2), "option --runs: unknown item 'visco' \\(one of none\\|stretch\\|micro\\)");
+    EXPECT_EXIT(runs_list(",micro"), ::testing::ExitedWithCode(2), "option --runs: unknown item ''");
+    EXPECT_EXIT(runs_list(""), ::testing::ExitedWithCode(2), "option --runs: empty list");
+}
+
 }  // namespace

@@ -35,7 +35,6 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 namespace {
 
@@ -144,24 +143,15 @@ int run(int argc, char** argv)
     pd::io::add_standard(opt, "reports/3d/notched_plate");
     for (const char* p : {"E", "rho", "Gc", "delta", "L", "thickness", "strain", "t-ramp", "t-end", "dt-factor"}) opt.require_positive(p);
     opt.require_range("nu", -1, 0.5, false, false);
-    opt.require_at_least("m", 1);
-    opt.require_at_least("sample", 1);
-    opt.require_at_least("C-hg", 0);
-    opt.require_at_least("no-fail", 0);
+    for (const char* p : {"m", "sample"}) opt.require_at_least(p, 1);
+    for (const char* p : {"C-hg", "no-fail"}) opt.require_at_least(p, 0);
     opt.parse(argc, argv);
     const std::vector<double> etas = pd::io::list_option(opt, "etas", pd::io::ListValues::positive);
     for (double e : etas)
         if (!(e > 1)) opt.fail("--etas values must be > 1");
-    std::vector<std::string> runs;
-    {
-        std::stringstream ss(opt.get_string("runs"));
-        for (std::string w; std::getline(ss, w, ',');) {
-            if (w != "none" && w != "stretch" && w != "micro" && w != "visco") opt.fail("--runs: unknown run '" + w + "'");
-            runs.push_back(w);
-        }
-    }
     const bool quick = opt.get_flag("quick");
-    if (quick && !opt.given("runs")) runs = {"stretch", "micro"};
+    const std::vector<std::string> runs = quick && !opt.given("runs") ? std::vector<std::string>{"stretch", "micro"}
+                                                                     : pd::io::list_choices(opt, "runs", {"none", "stretch", "micro", "visco"});
     opt.echo(std::cout);
     pd::set_threads(opt.get_int("threads"));
     const std::string out = opt.get_string("out");
@@ -173,11 +163,8 @@ int run(int argc, char** argv)
     s.delta = opt.get("delta");
     s.dx = s.delta / opt.get("m");
     s.L = opt.get("L"), s.thick = opt.get("thickness"), s.a = s.L / 2, s.rho = opt.get("rho"), s.Gc = opt.get("Gc");
-    s.strain = opt.get("strain"), s.t_ramp = quick ? 150e-6 : opt.get("t-ramp");
-    s.t_end = quick ? 120e-6 : opt.get("t-end");
-    s.no_fail = opt.get("no-fail");
-    s.C_hg = opt.get("C-hg");
-    s.sample = opt.get_int("sample");
+    s.strain = opt.get("strain"), s.t_ramp = quick ? 150e-6 : opt.get("t-ramp"), s.t_end = quick ? 120e-6 : opt.get("t-end");
+    s.no_fail = opt.get("no-fail"), s.C_hg = opt.get("C-hg"), s.sample = opt.get_int("sample");
     s.body = pd::box<3>({{0, 0, 0}}, {{s.L, s.L, s.thick}}, s.dx);
     double y_lo = -HUGE_VAL, y_hi = HUGE_VAL;  // notch plane: between the two node layers nearest y = L/2
     for (double y : s.body.x.c[1]) {
@@ -213,11 +200,11 @@ int run(int argc, char** argv)
                 return std::make_unique<pd::ViscoelasticCorrespondence>(*inner, pd::ViscoelasticCorrespondence::Params{vp.gamma_b, vp.tau_b},
                                                                         s.body.x);
             };
-            std::ostringstream nm;
-            nm << "micro_eta" << eta;
+            char nm[32];  // micro_eta1.01, micro_eta3
+            std::snprintf(nm, sizeof nm, "micro_eta%g", eta);
             // The branch is relaxed within a step (tau_b < dt), but a step increment sees the stiffness
             // (1 + gamma_b) G = eta^2 G: dt is divided by eta (the wave-speed ratio), else eta = 3 is unstable.
-            results.push_back(run_case(s, nm.str(), "micro", visco, out, eta));
+            results.push_back(run_case(s, nm, "micro", visco, out, eta));
         }
     }
 
@@ -226,10 +213,7 @@ int run(int argc, char** argv)
     std::vector<pd::io::SummaryRow> summary;
     pd::io::CsvWriter csv(out + "/runs.csv", {"run", "t_start_s", "t_end_s", "propagation_s", "peak_stress_Pa", "broken_at_end",
                                               "broken_final", "unstable", "wall_s"});
-    auto find = [&](const std::string& n) -> const Result* {
-        for (const auto& r : results) if (r.name == n) return &r;
-        return nullptr;
-    };
+    auto find = [&](const std::string& n) -> const Result* { for (const auto& r : results) if (r.name == n) return &r; return nullptr; };
     struct Published { const char* name; double start, end, wall; };  // Tables 8.1-8.3, correspondence [us], [s]
     const Published pub[] = {{"none", NAN, NAN, 671}, {"stretch", 102, 122, 720}, {"micro", 152, 156, 1164},
                              {"micro_eta1.01", 153, 157, NAN}, {"micro_eta1.1", 153, 157, NAN}, {"micro_eta3", 156, 170, 1277}};

@@ -1,4 +1,4 @@
-// pd/io/list_option.hpp -- comma-separated numeric lists given as one string option.
+// pd/io/list_option.hpp -- comma-separated lists (numbers or named choices) given as one string option.
 //
 //     opt.add_string("sf", "0.5", "safety factors, comma-separated");
 //     opt.parse(argc, argv);
@@ -36,6 +36,26 @@ inline std::vector<double> list_option(const Options& opt, const std::string& na
         const bool ok = parse_double(item, x) && std::isfinite(x) && (positive ? x > 0 : x >= 0);
         if (!ok) opt.fail("option --" + name + ": '" + item + "' is not a " + (positive ? "positive number" : "number >= 0"));
         v.push_back(x);
+    }
+    if (v.empty()) opt.fail("option --" + name + ": empty list");
+    return v;
+}
+
+// The items of string option `name`, each one of `allowed` (e.g. --runs none,stretch,micro);
+// an unknown or empty item ends the program with one line and status 2.
+inline std::vector<std::string> list_choices(const Options& opt, const std::string& name, const std::vector<std::string>& allowed)
+{
+    std::vector<std::string> v;
+    std::stringstream ss(opt.get_string(name));
+    for (std::string item; std::getline(ss, item, ',');) {
+        bool known = false;
+        for (const auto& a : allowed) known = known || item == a;
+        if (!known) {
+            std::string names;
+            for (const auto& a : allowed) names += (names.empty() ? "" : "|") + a;
+            opt.fail("option --" + name + ": unknown item '" + item + "' (one of " + names + ")");
+        }
+        v.push_back(item);
     }
     if (v.empty()) opt.fail("option --" + name + ": empty list");
     return v;
