@@ -19,7 +19,7 @@
 //   No omega factor (as Peridigm). C_hg = 0 (default) switches it off; the source uses 0.02.
 // A node whose K is singular (fewer than D independent intact bonds) gets K^-1 = 0 and F = I: no stress force.
 // Usage: internal_force(model, bonds, y, f) (bond_loop.hpp) runs point_pass (K on damage, F, P) and the
-// bond pass. With Law::flanagan_taylor call update_stress(bonds, y, v, dt) once per step, then
+// bond pass. With Law::flanagan_taylor call update_stress(bonds, y, v, dt) once per step (Explicit does), then
 // internal_force at y_np1. Pass v = v_nph = (y_np1 - y_n)/dt with the mid-step configuration
 // y = (y_n + y_np1)/2: L = Fdot F^-1 is then exactly skew for a rigid rotation (Cayley), so no
 // spurious stress. Peridigm pairs v_nph with y_np1, which gives a spurious expansion

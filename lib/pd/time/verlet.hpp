@@ -14,6 +14,12 @@
 // History models (viscoelastic, plastic): a model with set_time_step(dt) gets the step before the
 // force evaluation (0 in start()), which evaluates the trial state from the committed history, and
 // commit() after it, once per step; models without these members compile as before.
+// Rate-form stress (Correspondence<3> with Law::flanagan_taylor, models/correspondence.hpp): after
+// damage and before the force evaluation, update_stress(bonds, y_m, v_s, dt) advances sigma_hat, R, V
+// over the step, y_m = x + (u_n + u_{n+1})/2 the mid-step configuration and v_s = (u_{n+1} - u_n)/dt
+// (= v_{n+1/2}), as that header prescribes (exactly skew L for a rigid rotation). start() takes the
+// state from the reference (u = 0) to the initial u in one pseudo step dt = 1 (the update depends on
+// v dt only), as LoadStep from y0 = x does; so the model's state must belong to the reference then.
 // Extra force hook (contact.hpp: contact, impactors): extra_force(t, y, v, b) adds a body-force
 // density [N/m^3] to b after the boundary's body forces (v is the half-step velocity there); its
 // work enters the external work like any body force. Empty: nothing is called.
@@ -118,7 +124,8 @@ public:
         for (const auto& p : boundary.prescribed)
             for (int i : p.nodes) constrained_[i * D + p.component] = 1;
         if constexpr (requires { model.set_time_step(0.0); }) model.set_time_step(0.0);  // history: the initial state is reached instantly
-        evaluate();
+        u_old_.fill(0.0);  // rate form: the pseudo step from the reference (header)
+        evaluate(1.0);
         if constexpr (requires { model.commit(); }) model.commit();
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
@@ -148,7 +155,7 @@ public:
         t += dt;
         ++step_count;
         if constexpr (requires { model.set_time_step(dt); }) model.set_time_step(dt);
-        evaluate();
+        evaluate(dt);
         if constexpr (requires { model.commit(); }) model.commit();
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < n; ++i) {
@@ -205,13 +212,15 @@ public:
 
 private:
     Field<D> y_, f_, b_, f_prev_, u_old_, b_prev_;
+    Field<D> y_mid_, v_step_;                            // rate form only (header), else empty
     std::vector<std::uint8_t> constrained_;
     double external_work_ = 0;
     double initial_energy_ = 0;
     double energy_floor_ = 0;                            // [J]
     static constexpr double roundoff_speed = 1e-10;      // [m/s], see header
 
-    void evaluate()
+    // Forces and accelerations at u; dt: the step from u_old_ to u (rate-form stress update only).
+    void evaluate(double dt)
     {
         add_fields(body.x, u, y_);
         if (damage || micropotential) {
@@ -222,6 +231,19 @@ private:
             if constexpr (requires { model.recompute(bonds); })
                 if (broke > 0) model.recompute(bonds);
         }
+        if constexpr (D == 3 && requires { model.par.law == Model::Law::flanagan_taylor; model.update_stress(bonds, y_, v, dt); })
+            if (model.par.law == Model::Law::flanagan_taylor) {  // rate form (header)
+                if (y_mid_.size() != body.size()) {
+                    y_mid_.resize(body.size());
+                    v_step_.resize(body.size());
+                }
+                for (int d = 0; d < D; ++d)
+                    for (std::size_t i = 0; i < body.size(); ++i) {
+                        y_mid_.c[d][i] = body.x.c[d][i] + 0.5 * (u_old_.c[d][i] + u.c[d][i]);  // [m]
+                        v_step_.c[d][i] = (u.c[d][i] - u_old_.c[d][i]) / dt;                  // [m/s]
+                    }
+                model.update_stress(bonds, y_mid_, v_step_, dt);
+            }
         if (micropotential) {  // the force pass hands its per-bond forces to the increments
             internal_force(model, bonds, y_, f_, micropotential->template bond_output<Model>(bonds));
             micropotential->accumulate(model, bonds, y_);
