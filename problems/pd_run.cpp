@@ -170,7 +170,7 @@ int main(int argc, char** argv)
     cfg.model = model;
     cfg.hourglass = hourglass;
     cfg.surface = pd::parse_surface_correction(surface);
-    if (hourglass < 0) fail("option --hourglass must be >= 0, got " + std::to_string(hourglass));
+    if (hourglass < 0) fail("option --hourglass must be >= 0, got " + pd::io::format_shortest(hourglass));
     cfg.measure = dim == 2 ? thickness : dim == 1 ? area : 1.0;
     cfg.rho = rho;
     cfg.delta = delta;

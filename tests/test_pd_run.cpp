@@ -131,6 +131,38 @@ TEST(PdRun, RigidTranslationIsExact)
     }
 }
 
+// PMB with the energy surface correction (per-bond factors G_ij scale c): a rigid initial
+// displacement u0 = (1, -2, 0.5) x 1e-4 m at rest keeps every bond length, so no force: u stays u0
+// and v stays 0. Bound from the round-off stretch |s| <= 1e-14 (as above): |a| <= G_max c |s| sum V_j
+// / rho with sum V_j <= 123 dx^3 (the family of delta = 3 dx) and G_max <= 8 (a corner node holds
+// >= 1/8 of the full family), so |v| <= |a| t and |u - u0| <= |a| t^2 / 2.
+TEST(PdRun, SurfaceCorrectedPmbKeepsARigidDisplacement)
+{
+    const int n = 4;
+    const double dx = 1e-3, delta = 3e-3, u0[3] = {1e-4, -2e-4, 0.5e-4};
+    const auto p = write_file("rigid_sc.csv", lattice_csv(n, dx, ",ux,uy,uz", [&](int, int, int) {
+                                  return "," + num(u0[0]) + "," + num(u0[1]) + "," + num(u0[2]);
+                              }));
+    const Result r = pd_run("rigid_sc", "--input " + p.string() + steel + " --model pmb --surface-correction energy --dx " +
+                                            num(dx) + " --delta " + num(delta) + " --steps 20");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(slurp(r.dir / "params.csv").find("surface-correction,energy"), std::string::npos);
+    const double K = 200e9 / (3 * (1 - 2 * 0.25)), c = 18 * K / (std::numbers::pi * std::pow(delta, 4));
+    const double a_bound = 8 * c * 1e-14 * 123 * dx * dx * dx / 7800;  // [m/s^2]
+    const auto energy = read_csv(r.dir / "energy.csv");  // steps 0, 10, 20
+    ASSERT_EQ(energy.rows.size(), 3u);
+    const double t = energy.number(2, 1);  // [s]
+    const double strain_bound = 8 * 4.5 * K * 1e-28 * n * n * n * dx * dx * dx;  // G_max 9/2 K s^2 V_total [J]
+    for (std::size_t k = 0; k < energy.rows.size(); ++k) EXPECT_LE(std::abs(energy.number(k, 3)), strain_bound);
+    const auto st = read_csv(r.dir / "state_step0020.csv");
+    ASSERT_EQ(st.rows.size(), static_cast<std::size_t>(n * n * n));
+    for (std::size_t i = 0; i < st.rows.size(); ++i)
+        for (int d = 0; d < 3; ++d) {
+            EXPECT_NEAR(st.number(i, 4 + d), u0[d], a_bound * t * t / 2) << "node " << i;
+            EXPECT_NEAR(st.number(i, 7 + d), 0.0, a_bound * t) << "node " << i;
+        }
+}
+
 // Two nodes at x = 0 and x = L = 1 m, volumes V, bond stretched by s = ux1 / L = 0.01, rho = 1000,
 // delta = 1.5 m, omega = 1, dt = 1e-3 s. PMB micromoduli (Silling & Askari 2005, energy matched):
 //   3D c = 18 K / (pi delta^4),  K = E / (3 (1 - 2 nu))          (V = 1 m^3)
@@ -245,6 +277,9 @@ TEST(PdRun, BadInputsExitTwoWithOneLine)
         {in + " --rho 7800", "--E"},
         {in + " --E 1e9 --rho 7800", "--nu"},
         {in + steel + " --model foo", "--model"},
+        {in + steel + " --model correspondence --hourglass -1", "--hourglass"},
+        {in + steel + " --model lps --surface-correction energy --dx 1e-3", "--surface-correction energy applies to --model pmb"},
+        {in + steel + " --surface-correction energy", "--surface-correction energy needs --dx"},
         {in + steel + " --partial-volume pa-pdlammps", "--dx"},
         {in + steel + " --thickness 0.1", "--thickness"},
         {in + steel + " --dim 4", "--dim"},
