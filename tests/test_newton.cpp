@@ -1,9 +1,11 @@
 // Quasi-static Newton-Raphson (solve/newton.hpp) against closed forms: the affine field of a 1D
-// LPS bar and of a 3D PMB / LPS block whose outer layers (2 delta thick) carry the affine
+// LPS bar and of a 3D PMB / LPS / PALS / correspondence block whose outer layers (2 delta thick) carry the affine
 // displacement (spec/000b V12: an affine map is an exact discrete equilibrium when every free node
 // and its partners have complete families), quadratic convergence on a finite stretch, load
 // stepping, and the reports of failed solves.
+#include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
+#include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/solve/newton.hpp"
 
@@ -102,6 +104,39 @@ TEST(Newton, AffineFieldIn3DPMBandLPS)
     std::printf("[ newton ] max |u - H x| / max |H x|: PMB %.3e, LPS %.3e\n", ep, el);
     EXPECT_LT(ep, 100 * 1e-10);
     EXPECT_LT(el, 100 * 1e-10);
+}
+
+// The same block and frame for PALS (coloured FD tangent, Cholesky: its tangent is symmetric) and
+// correspondence (linear law, Littlewood C_hg = 0.02; FD tangent, sparse LU: the tangent is not
+// symmetric, solve/linear_solver.hpp). Each free node (2 delta inside) and its partners (delta
+// inside) have full, point-symmetric families, which under an affine map carry the same state: PALS
+// the same force state per bond direction, correspondence the same P K^-1 (F is exact for an affine
+// map, the hourglass term vanishes), so the pair forces of xi and -xi cancel and u = H x is the
+// discrete equilibrium. Tolerance as above: the residual tolerance 1e-10 times cond ~ 16^2 < 100.
+TEST(Newton, AffineFieldIn3DPALSandCorrespondence)
+{
+    const double dx = 1e-3;
+    const Vec<3> lo{{0, 0, 0}}, hi{{16 * dx, 16 * dx, 16 * dx}};
+    const Body<3> body = box<3>(lo, hi, dx);
+    const Bonds bonds = build_bonds(body, 3.05 * dx);
+    const double H[3][3] = {{2e-3, 5e-4, 0}, {5e-4, -1e-3, 3e-4}, {0, 3e-4, 1e-3}};
+    const Boundary<3> bc = affine_frame<3>(body, H, lo, hi, 2 * 3.05 * dx);
+    const Elastic mat = Elastic::from_E_nu(100e9, 0.25);
+    PALS pals({.material = mat}, body, bonds);
+    Correspondence<3> corr({.material = mat, .C_hg = 0.02}, body, bonds);
+    Field<3> u(body.size());
+    const NewtonResult rp = Newton<3, PALS>(body, bonds, pals).solve(u, bc, 0, {.tol = 1e-10});
+    print("3D PALS affine (Cholesky)", rp);
+    ASSERT_TRUE(rp.converged) << rp.message;
+    const double ep = affine_error(body, u, H);
+    Field<3> u2(body.size());
+    const NewtonResult rc = Newton<3, Correspondence<3>>(body, bonds, corr).solve(u2, bc, 0, {.tol = 1e-10, .linear = LinearSolver::lu});
+    print("3D correspondence affine (LU)", rc);
+    ASSERT_TRUE(rc.converged) << rc.message;
+    const double ec = affine_error(body, u2, H);
+    std::printf("[ newton ] max |u - H x| / max |H x|: PALS %.3e, correspondence %.3e\n", ep, ec);
+    EXPECT_LT(ep, 100 * 1e-10);
+    EXPECT_LT(ec, 100 * 1e-10);
 }
 
 // Finite stretch (10 %) of a PMB block held at both ends (all components): geometric terms make
