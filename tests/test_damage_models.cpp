@@ -1,6 +1,6 @@
 // Every model honours bond damage (issue 3). Rule checked here for PMB, LPS, LPS+SCF, PALS and
-// correspondence (linear law with and without Littlewood control, 3D Saint Venant-Kirchhoff), 1D
-// (PMB, LPS), 2D and 3D where the model exists:
+// correspondence (linear law with and without Littlewood control, 3D Saint Venant-Kirchhoff and
+// Flanagan-Taylor), 1D (PMB, LPS), 2D and 3D where the model exists:
 //   a body whose broken bonds are marked (intact = 0, both directions of a pair) is the same body
 //   built from scratch on a bond list that never had those bonds (BondOptions::keep),
 // i.e. equal internal forces, dilatation, weighted volume, shape tensor K^-1, F, PALS multipliers
@@ -98,13 +98,24 @@ TEST(DamageModels, PALS)
     expect_cut_halves_independent(block<3>(), make_pals);
 }
 
-// Linear law with and without Littlewood control (2D, 3D), and the Saint Venant-Kirchhoff law (3D).
+// Linear law with and without Littlewood control (2D, 3D), the Saint Venant-Kirchhoff law (3D), and
+// the Flanagan-Taylor law (3D, with C_hg = 0.02) after one update_stress to the deformed state
+// (advance_rate_form: its K^-1 from the intact bonds), also comparing the stress sigma (round-off
+// relative to K 1e-3, the stress of the random deformation's strains ~1e-3).
 TEST(DamageModels, CorrespondenceWithoutAndWithHourglassControl)
 {
     auto make_svk = [](const Body<3>& body, const Bonds& b) {
         return Correspondence<3>({steel, Correspondence<3>::Law::saint_venant_kirchhoff}, body, b);
     };
     expect_same_as_scratch(block<3>(), random_pairs(40), make_svk, corr_state<3>, 40);
+    auto make_ft = [](const Body<3>& body, const Bonds& b) {
+        return Correspondence<3>({steel, Correspondence<3>::Law::flanagan_taylor, 0.02}, body, b);
+    };
+    expect_same_as_scratch(block<3>(), random_pairs(40), make_ft, [](const Correspondence<3>& d, const Correspondence<3>& s) {
+        corr_state<3>(d, s);
+        for (std::size_t i = 0; i < s.sigma.size(); ++i)
+            ASSERT_LE((d.sigma[i] - s.sigma[i]).norm(), roundoff * (s.sigma[i].norm() + steel.K * 1e-3)) << "sigma node " << i;
+    }, 40);
     for (double C_hg : {0.0, 0.02}) {
         expect_same_as_scratch(block<3>(), random_pairs(40), make_corr<3>(C_hg), corr_state<3>, 40);
         expect_same_as_scratch(block<2>(), random_pairs(40), make_corr<2>(C_hg), corr_state<2>, 40);
