@@ -1,6 +1,7 @@
-// Every model honours bond damage (issue 3). Rule checked here for PMB, LPS, LPS+SCF, PALS and
+// Every model honours bond damage (issue 3). Rule checked here for PMB, LPS, LPS+SCF, PALS,
 // correspondence (linear law with and without Littlewood control, 3D Saint Venant-Kirchhoff and
-// Flanagan-Taylor), 1D (PMB, LPS), 2D and 3D where the model exists:
+// Flanagan-Taylor) and the plastic LPS, PALS and correspondence (3D), 1D (PMB, LPS), 2D and 3D
+// where the model exists:
 //   a body whose broken bonds are marked (intact = 0, both directions of a pair) is the same body
 //   built from scratch on a bond list that never had those bonds (BondOptions::keep),
 // i.e. equal internal forces, dilatation, weighted volume, shape tensor K^-1, F, PALS multipliers
@@ -21,10 +22,14 @@
 // differ by 0.33 (LPS with Peridigm's m_i) and 0.019 (PALS in Explicit) of the largest force.
 // The force-is-energy-gradient and largest-eigenvalue checks after damage: test_damage_energy.cpp.
 #include "pd/damage/critical_stretch.hpp"
+#include "pd/models/plastic_correspondence.hpp"
+#include "pd/models/plastic_lps.hpp"
+#include "pd/models/plastic_pals.hpp"
 #include "pd/time/verlet.hpp"
 
 #include "damage_fixtures.hpp"
 
+#include <algorithm>
 #include <set>
 
 using namespace pd;
@@ -122,6 +127,28 @@ TEST(DamageModels, CorrespondenceWithoutAndWithHourglassControl)
         expect_cut_halves_independent(block<3>(), make_corr<3>(C_hg));
         expect_cut_halves_independent(block<2>(), make_corr<2>(C_hg));
     }
+}
+
+// The plastic models (J2 return on the trial state from a zero history): a yield stress of 50 kPa
+// (yield strain ~ A/(3G) = 2e-7) makes every node plastic under the 1e-3 random deformation, so
+// the returned forces and the trial ep depend on the intact family sums (W_d, theta, m_i, PALS
+// multipliers, correspondence K): damaged == scratch to round-off, and a node with no bonds has
+// zero force.
+TEST(DamageModels, PlasticLPSPALSAndCorrespondence)
+{
+    const laws::JohnsonCook law{.A = 5e4, .B = 1e8, .n = 0.71};
+    auto ep_state = [](const auto& d, const auto& s) {
+        expect_vectors_near(d.pts.ep, s.pts.ep, "ep");
+        EXPECT_GT(*std::max_element(s.pts.ep.begin(), s.pts.ep.end()), 0.0) << "no plastic flow";
+    };
+    auto make_plps = [&](const Body<3>&, const Bonds& b) { return PlasticLPS({.material = steel, .dim = 3}, b, law); };
+    auto make_ppals = [&](const Body<3>& body, const Bonds& b) { return PlasticPALS({.material = steel}, body, b, law); };
+    auto make_pcorr = [&](const Body<3>& body, const Bonds& b) {
+        return PlasticCorrespondence({steel, Correspondence<3>::Law::linear, 0.02}, body, b, law);
+    };
+    expect_same_as_scratch(block<3>(), random_pairs(40), make_plps, ep_state, 40);
+    expect_same_as_scratch(block<3>(), random_pairs(40), make_ppals, ep_state, 40);
+    expect_same_as_scratch(block<3>(), random_pairs(40), make_pcorr, ep_state, 40);
 }
 
 // The integrator triggers the refresh: Explicit::start breaks the bonds stretched beyond s0 by a

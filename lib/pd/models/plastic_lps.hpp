@@ -11,7 +11,10 @@
 // with a shear correction alpha_i = SCF 15 G/m (the [RECON] m/(5 SCF) of sec. 2.4), so the return
 // factor is 3 G in both cases. Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y| with
 // t = omega (3 K theta |xi| / m + t_d) (4.11); t_j<-xi> reads the twin bond's t_d.
-// 3D, undamaged scenes only (the family sums use every bond). History protocol: plastic_points.hpp.
+// 3D. Damage: the family sums skip broken bonds (as LPS), recompute(bonds) refreshes m_i and
+// alpha_i (LPS intact rule), so a damaged body equals the body built without the broken bonds
+// (tests/test_plastic_models.cpp); a broken bond keeps its committed e_dp and carries no force.
+// History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
@@ -43,6 +46,7 @@ struct PlasticLPS {
     }
 
     void set_time_step(double dt) { pts.set_time_step(dt); }
+    void recompute(const Bonds& b) { lps.recompute(b); }  // after bonds broke (header)
     void commit()
     {
         edp_c = edp;
@@ -52,13 +56,14 @@ struct PlasticLPS {
     // Trial state at y from the committed history (header).
     void point_pass(const Bonds& b, const Field<3>& y)
     {
-        if (b.has_damage()) throw std::invalid_argument("PlasticLPS: damaged scenes are not supported");
         lps.point_pass(b, y);
         const double G = lps.G;
+        const bool damaged = b.has_damage();
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double th = lps.theta[i] / 3;
-            double sum = 0;  // sum omega e_de^2 V [m^5]
+            double sum = 0;  // sum omega e_de^2 V [m^5] over intact bonds
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (damaged && !b.intact[k]) { tdev[k] = 0; continue; }
                 const double e = deviatoric_extension(b, y, i, k, th, edp_c);
                 tdev[k] = e;  // e_de until the return below
                 sum += lps.wV[k] * e * e;
@@ -68,6 +73,7 @@ struct PlasticLPS {
             const double scale = r.plastic ? r.sigma_eff / trial : 1.0;             // (5.46)
             const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;        // (5.40)
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (damaged && !b.intact[k]) { edp[k] = edp_c[k]; continue; }
                 const double e = tdev[k];
                 tdev[k] = lps.alpha[i] * scale * e;
                 edp[k] = edp_c[k] + flow * e;

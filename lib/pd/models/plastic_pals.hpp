@@ -12,7 +12,10 @@
 // update (the plastic extension enters (sigma x)•e_de). Elastic (e_dp = 0, no flow): identical to
 // models/pals.hpp. A negative W_d (possible where sigma_i < 0 on some bonds) is clamped at 0.
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y|; t_j<-xi> is read from the twin bond.
-// 3D, undamaged scenes only. History protocol: plastic_points.hpp.
+// 3D. Damage: the family sums skip broken bonds, recompute(bonds) recomputes the multipliers
+// (PALS), so a damaged body equals the body built without the broken bonds
+// (tests/test_plastic_models.cpp); a broken bond keeps its committed e_dp and carries no force.
+// History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
@@ -44,6 +47,7 @@ struct PlasticPALS {
     }
 
     void set_time_step(double dt) { pts.set_time_step(dt); }
+    void recompute(const Bonds& b) { pals.recompute(b); }  // after bonds broke (header)
     void commit()
     {
         edp_c = edp;
@@ -53,13 +57,14 @@ struct PlasticPALS {
     // Trial state at y from the committed history (header).
     void point_pass(const Bonds& b, const Field<3>& y)
     {
-        if (b.has_damage()) throw std::invalid_argument("PlasticPALS: damaged scenes are not supported");
         pals.point_pass(b, y);
         const double G = pals.G;
+        const bool damaged = b.has_damage();
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double th = pals.theta[i] / 3;
-            double wd = 0, sx = 0;  // 2 W_d = sum 2G sigma e_de^2 V [Pa]; sum 2G sigma |xi| e_de V [Pa]
+            double wd = 0, sx = 0;  // 2 W_d = sum 2G sigma e_de^2 V [Pa]; sum 2G sigma |xi| e_de V [Pa] (intact bonds)
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (damaged && !b.intact[k]) { t[k] = 0; continue; }
                 const double e = deviatoric_extension(b, y, i, k, th, edp_c);
                 t[k] = e;  // e_de until the return below
                 wd += pals.s_i[k] * e * e;
@@ -71,6 +76,7 @@ struct PlasticPALS {
             const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;   // (5.58)
             const double P = pals.K * pals.theta[i] - scale * sx / 3;            // K theta - (2G/3)(sigma x)•e_de_np1
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (damaged && !b.intact[k]) { edp[k] = edp_c[k]; continue; }
                 const double e = t[k];
                 t[k] = (P * pals.w_i[k] * b.length[k] + scale * pals.s_i[k] * e) / b.volume[k];  // (4.21)
                 edp[k] = edp_c[k] + flow * e;
