@@ -7,8 +7,14 @@
 //   sigma_yy = sigma_zz = (K - 2G/3) ln(lambda): the linear law at strain e to a relative e/2;
 //   a rigid rotation: L dt exactly skew (Cayley), d = 0, so sigma = 0 to round-off;
 //   start() with an initial uniaxial strain e: one pseudo step from the reference, d = e/(1 + e/2).
+// Newmark, dynamic relaxation and Newton do not drive update_stress: they reject the bare
+// rate-form model (models/rate_form.hpp) and accept it wrapped in LoadStep, and the linear law.
 #include "pd/bond_loop.hpp"
 #include "pd/models/correspondence.hpp"
+#include "pd/models/load_step.hpp"
+#include "pd/solve/newton.hpp"
+#include "pd/time/dynamic_relaxation.hpp"
+#include "pd/time/newmark.hpp"
 #include "pd/time/verlet.hpp"
 
 #include <gtest/gtest.h>
@@ -137,4 +143,20 @@ TEST(ExplicitRateForm, FlanaganTaylorStartReachesTheInitialStrain)
                 max_deviation(model, S) / ((K + 4 * G / 3) * e), a_err / a_max, a_max);
     EXPECT_GT(a_max, 1e6);  // surface nodes: ~ (K + 4G/3) e / (rho dx) = 3e7 m/s^2
     EXPECT_LT(a_err, e * a_max);
+}
+
+TEST(RateForm, SolversThatDoNotDriveItRejectTheBareModel)
+{
+    const Body<3> body = block();
+    Bonds bonds = build_bonds(body, delta);
+    C3 ft({steel, C3::Law::flanagan_taylor}, body, bonds);
+    C3 linear({steel, C3::Law::linear}, body, bonds);
+    EXPECT_THROW((Newmark<3, C3>(body, bonds, ft, rho)), std::invalid_argument);
+    EXPECT_THROW((DynamicRelaxation<3, C3>(body, bonds, ft)), std::invalid_argument);
+    EXPECT_THROW((Newton<3, C3>(body, bonds, ft)), std::invalid_argument);
+    EXPECT_NO_THROW((Newmark<3, C3>(body, bonds, linear, rho)));
+    EXPECT_NO_THROW((DynamicRelaxation<3, C3>(body, bonds, linear)));
+    EXPECT_NO_THROW((Newton<3, C3>(body, bonds, linear)));
+    LoadStep<C3> wrapped(ft, body.x);
+    EXPECT_NO_THROW((DynamicRelaxation<3, LoadStep<C3>>(body, bonds, wrapped)));
 }

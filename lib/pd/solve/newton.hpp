@@ -15,6 +15,7 @@
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
 #include "pd/io/timer.hpp"
+#include "pd/models/rate_form.hpp"
 #include "pd/solve/linear_solver.hpp"
 #include "pd/solve/tangent.hpp"
 
@@ -63,6 +64,7 @@ public:
     Newton(const Body<D>& body, const Bonds& bonds, Model& model) : body(body), bonds(bonds), model(model)
     {
         if (bonds.nodes() != body.size()) throw std::invalid_argument("Newton: body and bonds sizes differ");
+        reject_unwrapped_rate_form(model, "Newton");
     }
 
     // Solves for u (in/out: initial guess) at load level t_load.

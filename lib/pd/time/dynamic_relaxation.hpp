@@ -29,6 +29,7 @@
 #include "pd/bond_loop.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/lattice.hpp"
+#include "pd/models/rate_form.hpp"
 #include "pd/time/stiffness_bound.hpp"  // the diagonal densities
 
 #include <algorithm>
@@ -71,6 +72,7 @@ public:
     {
         if (G_.size() != body.size() || bonds.nodes() != body.size())
             throw std::invalid_argument("DynamicRelaxation: body, bonds and stiffness bound sizes differ");
+        reject_unwrapped_rate_form(model, "DynamicRelaxation");
     }
 
     // Relaxes u (in/out: the initial guess, e.g. the previous load level) to the equilibrium at

@@ -23,6 +23,7 @@
 #pragma once
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
+#include "pd/models/rate_form.hpp"
 #include "pd/solve/linear_solver.hpp"
 #include "pd/solve/tangent.hpp"
 #include "pd/time/verlet.hpp"
@@ -60,6 +61,7 @@ public:
           y_(body.size()), f_(body.size()), b_(body.size())
     {
         if (!(density > 0)) throw std::invalid_argument("density rho must be positive");
+        reject_unwrapped_rate_form(model, "Newmark");
     }
 
     // Call after initial u, v and the boundary are set: forces and accelerations at t.
