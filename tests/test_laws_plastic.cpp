@@ -185,3 +185,15 @@ TEST(LawsPlastic, HundredPercentStrainAndFirstYieldWithNBelowOne)
     EXPECT_NEAR(s.sigma_eff + 3 * G * s.dlambda, trial, 8 * eps_d * trial);
     EXPECT_LT(s.iterations, 400);  // converged before the iteration cap
 }
+
+// dt = 0 (the instantaneous initial step of an explicit run, time/verlet.hpp start): no rate is
+// defined, so the rate-dependent law returns as the rate-independent one. Reference: the first
+// (rate-independent) row of the V7 table.
+TEST(LawsPlastic, InstantaneousStepIsRateIndependent)
+{
+    const ScalarReturn s = radial_return(al7075(true), G, 700e6, 0.0, 0.0, 20);
+    ASSERT_TRUE(s.plastic);
+    EXPECT_NEAR(s.dlambda, 1.809711e-3, half_unit_7(1.809711e-3));
+    EXPECT_NEAR(s.sigma_eff, 553.6583e6, half_unit_7(553.6583e6));
+    EXPECT_THROW(radial_return(al7075(true), G, 700e6, 0.0, -1e-9, 20), std::invalid_argument);
+}

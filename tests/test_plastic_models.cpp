@@ -10,17 +10,23 @@
 //    under uniaxial strain then shear reproduce the point law;
 //  - the history protocol: point_pass twice at one y gives the same force (no accumulation), and
 //    commit() then re-evaluation at the same y adds no plastic strain; heat source
-//    beta_TQ sigma_y dl / dt.
+//    beta_TQ sigma_y dl / dt;
+//  - explicit dynamics (Explicit: set_time_step(0) at start, dt per step): a free block stretched by
+//    an initial velocity field yields; kinetic + stored energy never rises above the initial
+//    kinetic energy by more than the elastic run's integration error and ends clearly below it
+//    (dissipation); below yield the stored energy is the elastic model's.
 #include "pd/bond_loop.hpp"
 #include "pd/laws/j2.hpp"
 #include "pd/lattice.hpp"
 #include "pd/models/plastic_correspondence.hpp"
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"
+#include "pd/time/verlet.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 using namespace pd;
 using laws::Mat3;
@@ -184,4 +190,82 @@ TEST(PlasticCorrespondence, InteriorNodesReproduceThePointLaw)
         h = u.history;
     }
     EXPECT_GT(h.ep, 5e-3);  // both parts of the path flowed
+}
+
+namespace {
+struct ExplicitRun {
+    double ep_max = 0;      // largest equivalent plastic strain [-]
+    double rise = -1e300;   // max over the steps of (KE + SE) / KE_0 - 1 [-]
+    double final = 0;       // (KE + SE) / KE_0 - 1 at the end [-]
+};
+
+// A 5^3 block with v_x = rate (x - x_c), rate 1e5 1/s (uniaxial strain rate; yield strain near
+// 4e-3 is reached after 40 ns), free faces, 40 steps of 2e-8 s (the critical step is about 1e-7 s).
+template <class Model>
+ExplicitRun stretch_block_explicitly(Model& model, const Body<3>& body, Bonds& bonds, double dx)
+{
+    Explicit<3, Model> ex(body, bonds, model, 2700);
+    for (std::size_t i = 0; i < body.size(); ++i) ex.v.c[0][i] = 1e5 * (body.x.c[0][i] - 2 * dx);
+    ex.start();
+    const double e0 = ex.energies().kinetic;
+    ExplicitRun r;
+    for (int n = 0; n < 40; ++n) {
+        ex.step(2e-8);
+        const Energies e = ex.energies();
+        r.final = (e.kinetic + e.strain) / e0 - 1;
+        r.rise = std::max(r.rise, r.final);
+    }
+    if constexpr (requires { model.pts; })
+        for (std::size_t i = 0; i < body.size(); ++i) {
+            r.ep_max = std::max(r.ep_max, model.pts.ep[i]);
+            EXPECT_TRUE(std::isfinite(model.pts.heat_source[i]));
+        }
+    return r;
+}
+}  // namespace
+
+// The elastic LPS run of the same block gives the integrator's own energy error at this dt (no
+// dissipation, no external work): |rise| and |final| of the elastic run bound it. A plastic run
+// must never rise above the initial energy by more than twice that, and must end lower by more
+// than ten times it (the plastic dissipation is real, not integration error).
+TEST(PlasticModels, RunInExplicitDynamicsAndDissipate)
+{
+    const double dx = 1e-3;
+    const Body<3> body = box<3>({{0, 0, 0}}, {{4 * dx, 4 * dx, 4 * dx}}, dx);
+    Bonds bonds = build_bonds(body, 3.05 * dx);
+    LPS elastic({.material = al, .dim = 3}, bonds);
+    const ExplicitRun el = stretch_block_explicitly(elastic, body, bonds, dx);
+    const double err = std::max(std::abs(el.rise), std::abs(el.final));
+    ASSERT_LT(err, 0.05);  // a sane integration at this dt
+    const laws::JohnsonCook jc{.A = 300e6, .B = 500e6, .n = 0.5, .C = 0.02, .epdot0 = 1};
+    PlasticLPS lps({.material = al, .dim = 3}, bonds, jc);
+    PlasticPALS pals({.material = al}, body, bonds, jc);
+    PlasticCorrespondence corr({.material = al, .C_hg = 0.02}, body, bonds, jc);
+    const ExplicitRun runs[] = {stretch_block_explicitly(lps, body, bonds, dx), stretch_block_explicitly(pals, body, bonds, dx),
+                                stretch_block_explicitly(corr, body, bonds, dx)};
+    for (const ExplicitRun& r : runs) {
+        EXPECT_GT(r.ep_max, 1e-3);
+        EXPECT_LE(r.rise, 2 * err);
+        EXPECT_LT(r.final, -10 * err);
+        std::printf("elastic error %.3g; plastic: ep_max %.3g, rise %.3g, final %.3g\n", err, r.ep_max, r.rise, r.final);
+    }
+}
+
+TEST(PlasticModels, StoredEnergyBelowYieldIsTheElasticModels)
+{
+    const double dx = 1e-3;
+    const Body<3> body = box<3>({{0, 0, 0}}, {{5 * dx, 5 * dx, 5 * dx}}, dx);
+    const Bonds bonds = build_bonds(body, 3.05 * dx);
+    const laws::JohnsonCook jc{.A = 300e6, .B = 500e6, .n = 0.5};
+    Mat3 F = Mat3::Identity();
+    F(0, 0) += 1e-4;
+    F(0, 1) += 5e-5;  // strains of 1e-4: far below yield (about 4e-3)
+    const Field<3> y = affine(body, F);
+    Field<3> f;
+    PlasticLPS p({.material = al, .dim = 3}, bonds, jc);
+    LPS e({.material = al, .dim = 3}, bonds);
+    internal_force(p, bonds, y, f);
+    internal_force(e, bonds, y, f);
+    const std::vector<double> Wp = p.energy_density(bonds, y), We = e.energy_density(bonds, y);
+    for (std::size_t i = 0; i < body.size(); ++i) EXPECT_NEAR(Wp[i], We[i], 1e-12 * We[i]) << i;
 }

@@ -33,15 +33,18 @@ struct ScalarReturn {
 };
 
 // Solves (5.21) for dl; trial = sigma_eff_trial [Pa], G [Pa], ep_n [-], dt [s], theta as law's.
+// dt = 0 is an instantaneous step (the initial state of an explicit run, time/verlet.hpp start):
+// no rate is defined, so the return is rate-independent (rate factor 1, the yield-check stress).
 inline ScalarReturn radial_return(const JohnsonCook& law, double G, double trial, double ep_n, double dt, double theta)
 {
-    if (!(dt > 0)) throw std::invalid_argument("radial_return: dt must be > 0");
+    if (!(dt >= 0)) throw std::invalid_argument("radial_return: dt must be >= 0");
+    const bool rated = dt > 0;
     ScalarReturn r;
     r.sigma_eff = trial;
     if (!(trial > law.yield_check_stress(ep_n, theta))) return r;  // elastic (also trial = sigma_y0 = 0)
     r.plastic = true;
     const double tf = law.thermal_factor(theta);
-    auto sigma_y = [&](double dl) { return law.flow_stress(ep_n + dl, dl / dt, theta); };
+    auto sigma_y = [&](double dl) { return rated ? law.flow_stress(ep_n + dl, dl / dt, theta) : law.yield_check_stress(ep_n + dl, theta); };
     double lo = 0, hi = trial / (3 * G);  // r(lo) >= 0 >= r(hi)
     double dl = std::min(hi, (trial - law.yield_check_stress(ep_n, theta)) / (3 * G));
     const double tol = 4 * std::numeric_limits<double>::epsilon() * trial;
@@ -52,9 +55,10 @@ inline ScalarReturn radial_return(const JohnsonCook& law, double G, double trial
         else hi = dl;
         if (std::abs(res) <= tol || hi - lo <= 2 * std::numeric_limits<double>::epsilon() * hi) break;
         // (5.66)-(5.67): dr/ddl = -3G - [h'(ep) R(rate) + h(ep) R'(rate)/dt] T(theta)
-        const double ep = ep_n + dl, rate = dl / dt;
-        const double slope = -3 * G - (law.hardening_slope(ep) * law.rate_factor(rate)
-                                       + law.hardening(ep) * law.rate_factor_slope(rate) / dt) * tf;
+        const double ep = ep_n + dl, rate = rated ? dl / dt : 0;
+        const double slope = rated ? -3 * G - (law.hardening_slope(ep) * law.rate_factor(rate)
+                                               + law.hardening(ep) * law.rate_factor_slope(rate) / dt) * tf
+                                   : -3 * G - law.hardening_slope(ep) * tf;
         double next = std::isfinite(slope) ? dl - res / slope : NAN;
         if (!(next > lo && next < hi)) {
             next = 0.5 * (lo + hi);

@@ -71,6 +71,18 @@ struct PlasticCorrespondence {
         model.point_pass(b, y);  // P = J sigma F^-T, P K^-1 at y
     }
 
+    // Stored (elastic) energy density 1/2 sigma : (eps - eps_p) [J/m^3] (trial eps_p), call after
+    // point_pass; hourglass energy not included (as Correspondence).
+    std::vector<double> energy_density(const Bonds& b, const Field<3>&) const
+    {
+        std::vector<double> W(b.nodes(), 0.0);
+        for (std::size_t i = 0; i < b.nodes(); ++i) {
+            const laws::Mat3 eps = 0.5 * (model.F[i] + model.F[i].transpose()) - laws::Mat3::Identity() - hist[i].eps_p;
+            W[i] = 0.5 * (model.sigma[i].array() * eps.array()).sum();
+        }
+        return W;
+    }
+
     template <class Pass>
     void with_kernel(Pass&& pass) const { model.with_kernel(pass); }
     Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }

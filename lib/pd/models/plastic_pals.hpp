@@ -84,6 +84,24 @@ struct PlasticPALS {
         });
     }
 
+    // Stored (elastic) energy density [J/m^3], call after point_pass at y: the PALS energy (4.15)
+    // of the elastic deviatoric extension e - theta |xi|/3 - e_dp (trial e_dp).
+    std::vector<double> energy_density(const Bonds& b, const Field<3>& y) const
+    {
+        std::vector<double> W(b.nodes(), 0.0);
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            const double th = pals.theta[i] / 3;
+            double dev = 0;
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                if (b.has_damage() && !b.intact[k]) continue;
+                const double e = deviatoric_extension(b, y, i, k, th, edp);
+                dev += pals.s_i[k] * e * e;
+            }
+            W[i] = 0.5 * pals.K * pals.theta[i] * pals.theta[i] + 0.5 * dev;
+        });
+        return W;
+    }
+
     // (t_i<xi> + t_j<-xi>) V_j / |Y|.
     double bond_scalar(std::size_t, std::int64_t k, int, double ylen) const
     {

@@ -1,7 +1,8 @@
 // pd/models/plastic_points.hpp -- the per-node plastic state shared by the PD plasticity models
 // (plastic_lps.hpp, plastic_correspondence.hpp): Johnson-Cook law, which nodes are plastic, the
 // node temperatures, the committed and trial equivalent plastic strain, and the per-step outputs.
-// History protocol (also used by the viscoelastic models): set_time_step(dt) sets the step;
+// History protocol (also used by the viscoelastic models): set_time_step(dt) sets the step (dt = 0:
+// an instantaneous step, as Explicit::start takes: rate-independent return, no heat source);
 // point_pass(bonds, y) evaluates the TRIAL state at y from the COMMITTED history (idempotent: no
 // accumulation over solver iterations); commit() makes the trial history the committed one.
 // Dissipated power (spec/000b eqs. 5.22-5.23, 5.51): p_i = beta_TQ sigma_y dlambda / dt [W/m^3],
@@ -41,7 +42,7 @@ struct PlasticPoints {
 
     void set_time_step(double step)
     {
-        if (!(step > 0)) throw std::invalid_argument("set_time_step: dt must be > 0");
+        if (!(step >= 0)) throw std::invalid_argument("set_time_step: dt must be >= 0");
         dt = step;
     }
     bool is_plastic(std::size_t i) const { return plastic.empty() || plastic[i]; }
@@ -62,7 +63,7 @@ struct PlasticPoints {
         dlambda[i] = r.dlambda;
         ep[i] = ep_c[i] + r.dlambda;
         sigma_eff[i] = r.sigma_eff;
-        heat_source[i] = beta_TQ * r.dissipation / dt;
+        heat_source[i] = dt > 0 ? beta_TQ * r.dissipation / dt : 0.0;  // an instantaneous step: no power
     }
     void commit() { ep_c = ep; }
 };
