@@ -49,6 +49,7 @@ struct CriticalStretch {
     std::vector<double> s0_bond;        // per-bond critical stretch [-] (random_field.hpp), symmetric
                                         // (s0_bond[k] == s0_bond[reverse[k]]); empty = s0 everywhere
     std::vector<std::uint8_t> no_fail;  // per node, 1 = bonds never break; empty = none
+    bool detach_singular = true;        // Explicit: the singular-node rule for correspondence (singular_nodes.hpp)
 
     void protect(const NodeSet& set, std::size_t nodes)
     {

@@ -10,7 +10,9 @@
 // Damage: bonds break before the force evaluation; a model with recompute(bonds) gets it called
 // whenever bonds broke. Either rule, or none: `damage` (critical stretch) or `micropotential`
 // (damage/micropotential.hpp; its work increments are accumulated right after the force evaluation).
-// Null pointers cost one test per step, nothing per bond.
+// Null pointers cost one test per step, nothing per bond. With `damage` and a correspondence model,
+// the thesis' singular-node rule (damage/singular_nodes.hpp; CriticalStretch::detach_singular) breaks
+// all bonds of a node whose K became singular or det F <= 0 at the previous force evaluation.
 // History models (viscoelastic, plastic): a model with set_time_step(dt) gets the step before the
 // force evaluation (0 in start()), which evaluates the trial state from the committed history, and
 // commit() after it, once per step; models without these members compile as before.
@@ -31,6 +33,7 @@
 #include "pd/bond_loop.hpp"
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
+#include "pd/damage/singular_nodes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -108,6 +111,7 @@ public:
     double t = 0;                      // [s]
     long step_count = 0;
     long broken_bonds = 0;
+    long detached_nodes = 0;  // critical stretch with correspondence: nodes detached by the singular-node rule
 
     Explicit(const Body<D>& body, Bonds& bonds, Model& model, double density)
         : body(body), bonds(bonds), model(model), rho(body.size(), density),
@@ -214,6 +218,7 @@ private:
     Field<D> y_, f_, b_, f_prev_, u_old_, b_prev_;
     Field<D> y_mid_, v_step_;                            // rate form only (header), else empty
     std::vector<std::uint8_t> constrained_;
+    std::vector<std::uint8_t> detached_;                 // singular-node rule (damage/singular_nodes.hpp)
     double external_work_ = 0;
     double initial_energy_ = 0;
     double energy_floor_ = 0;                            // [J]
@@ -224,7 +229,8 @@ private:
     {
         add_fields(body.x, u, y_);
         if (damage || micropotential) {
-            const long broke = (damage ? damage->apply(bonds, y_) : 0) + (micropotential ? micropotential->apply(bonds) : 0);
+            long broke = (damage ? damage->apply(bonds, y_) : 0) + (micropotential ? micropotential->apply(bonds) : 0);
+            if (damage && damage->detach_singular) broke += break_detached_bonds(bonds, detached_, damage->no_fail);
             broken_bonds += broke;
             // Models with bond-dependent per-node constants (PALS multipliers, LPS m_i and SCF_i)
             // refresh them over the intact bonds; correspondence recomputes K in its point pass.
@@ -249,6 +255,7 @@ private:
             micropotential->accumulate(model, bonds, y_);
         } else {
             internal_force(model, bonds, y_, f_);
+            if (damage && damage->detach_singular) detached_nodes += mark_singular_nodes(model, body.size(), detached_);
         }
         boundary.external(t, b_);
         if (extra_force) extra_force(t, y_, v, b_);
