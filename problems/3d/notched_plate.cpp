@@ -115,7 +115,7 @@ Result run_case(const Setup& s, const std::string& name, const std::string& dama
     r.wall = timer.seconds();
     std::printf("  %-12s start %7.2f us, end %7.2f us, propagation %6.2f us, peak %.4g MPa, broken %ld (at end %ld), "
                 "detached %ld, %.1f s\n", name.c_str(), r.t_start * 1e6, r.t_end * 1e6, (r.t_end - r.t_start) * 1e6,
-                r.peak_stress * 1e-6, r.broken_final, r.broken_at_end, mp.detached_nodes, r.wall);
+                r.peak_stress * 1e-6, r.broken_final, r.broken_at_end, mp.detached_nodes + ex.detached_nodes, r.wall);
     return r;
 }
 
