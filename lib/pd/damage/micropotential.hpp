@@ -35,6 +35,7 @@
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
+#include "pd/damage/singular_nodes.hpp"
 #include "pd/field.hpp"
 #include "pd/lattice.hpp"
 #include "pd/parallel.hpp"
@@ -140,10 +141,7 @@ struct CriticalMicropotential {
                 return 0.5 * d;
             });
         }
-        if constexpr (requires { model.Kinv; model.F; })
-            if (detach_singular) mark_singular(model, n);
-        if constexpr (requires { model.model.Kinv; model.model.F; })  // wrappers (viscoelastic correspondence)
-            if (detach_singular) mark_singular(model.model, n);
+        if (detach_singular) detached_nodes += mark_singular_nodes(model, n, detached);  // also wrappers (.model)
     }
 
 private:
@@ -185,16 +183,6 @@ private:
         });
         for (int a = 0; a < D; ++a) y_.c[a] = y.c[a];
         for (int c = 0; c < out_.components; ++c) std::swap(g_new_[c], g_old_[c]);
-    }
-
-    template <class Model>
-    void mark_singular(const Model& model, std::size_t n)
-    {
-        if (detached.size() != n) detached.assign(n, 0);
-        for (std::size_t i = 0; i < n; ++i) {
-            if (detached[i]) continue;
-            if (model.Kinv[i].isZero(0.0) || !(model.F[i].determinant() > 0)) { detached[i] = 1; ++detached_nodes; }
-        }
     }
 };
 

@@ -4,7 +4,7 @@
 // forces of an ill-conditioned K or an inverted F grow without bound. Non-physical, but it lets
 // fracture runs complete. For models that expose per-node Kinv and F (correspondence) or wrap one
 // as `.model` (plastic, viscoelastic correspondence); other models have no such node: no-op.
-// Usage (time/verlet.hpp with the critical-stretch rule; the micropotential rule has its own copy):
+// Usage (time/verlet.hpp with the critical-stretch rule; damage/micropotential.hpp in accumulate):
 // mark_singular_nodes(model, n, detached) after a force evaluation, then break_detached_bonds
 // before the next one. `detached` is sticky: once detached, a node stays so.
 #pragma once
