@@ -9,25 +9,12 @@
 #include "pd/bond_loop.hpp"
 #include "pd/models/lps.hpp"
 
+#include "affine_fixture.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace pd;
-
-namespace {
-// Node positions under the affine map y = F x.
-template <int D>
-Field<D> affine(const Body<D>& body, const std::array<std::array<double, D>, D>& F)
-{
-    Field<D> y(body.size());
-    for (std::size_t i = 0; i < body.size(); ++i)
-        for (int a = 0; a < D; ++a) {
-            double s = 0;
-            for (int b = 0; b < D; ++b) s += F[a][b] * body.x.c[b][i];
-            y.c[a][i] = s;
-        }
-    return y;
-}
-}  // namespace
+using pd_test::affine_positions;
 
 // Isotropic in-plane stretch s = 1e-3 of a 9 x 9 plate (m = 3), E = 70 GPa, nu = 0.3, centre node:
 //   plane stress kappa = E / (2 (1 - nu)) = 70e9 / 1.4 = 5.0e10 Pa        -> W = 2 kappa s^2 = 1.0e5 J/m^3
@@ -42,7 +29,7 @@ TEST(LPSConstants, IsotropicStretch2DPlaneStressAndStrain)
     auto body = box<2>({{0, 0}}, {{9 * dx, 9 * dx}}, dx, t);
     Bonds b = build_bonds(body, 3 * dx);
     const int mid = 4 + 4 * 9;
-    const Field<2> y = affine<2>(body, {{{1 + s, 0}, {0, 1 + s}}});
+    const Field<2> y = affine_positions<2>(body, {{{1 + s, 0}, {0, 1 + s}}});
     struct Case { Plane plane; double kappa; const char* name; };
     const Case cases[] = {{Plane::stress, E / (2 * (1 - nu)), "plane stress"},
                           {Plane::strain, E / (2 * (1 + nu) * (1 - 2 * nu)), "plane strain"}};
@@ -71,7 +58,7 @@ TEST(LPSConstants, PureShear2DPlaneStressAndStrain)
     auto body = box<2>({{0, 0}}, {{9 * dx, 9 * dx}}, dx, t);
     Bonds b = build_bonds(body, 3 * dx);
     const int mid = 4 + 4 * 9;
-    const Field<2> y = affine<2>(body, {{{1 + a, 0}, {0, 1 - a}}});
+    const Field<2> y = affine_positions<2>(body, {{{1 + a, 0}, {0, 1 - a}}});
     const double W_ref = 4 * G * a * a * 70.4 / 136;
     for (Plane plane : {Plane::stress, Plane::strain}) {
         LPS lps({mat, 2, plane}, b);
@@ -101,7 +88,7 @@ TEST(LPSConstants, OneDimensionalBarEnergyAndForce)
     ASSERT_EQ(body.size(), 21u);
     Bonds b = build_bonds(body, 3 * dx);
     LPS lps({mat, 1}, b);
-    const Field<1> y_s = affine<1>(body, {{{1 + s}}});
+    const Field<1> y_s = affine_positions<1>(body, {{{1 + s}}});
     lps.point_pass(b, y_s);
     EXPECT_NEAR(lps.theta[10] / s, 1.0, 1e-12);
     EXPECT_NEAR(lps.energy_density(b, y_s)[10] / 1.0e5, 1.0, 1e-9);  // E s^2 / 2 = 200e9 * 1e-6 / 2

@@ -4,6 +4,8 @@
 #include "pd/models/lps.hpp"
 #include "pd/models/pmb.hpp"
 
+#include "affine_fixture.hpp"
+
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -13,21 +15,10 @@
 #include <utility>
 
 using namespace pd;
+using pd_test::affine_positions;
 constexpr double pi = std::numbers::pi;
 
 namespace {
-template <int D>
-Field<D> affine_positions(const Body<D>& body, const std::array<std::array<double, D>, D>& F)
-{
-    Field<D> y(body.size());
-    for (std::size_t i = 0; i < body.size(); ++i)
-        for (int a = 0; a < D; ++a) {
-            double s = 0;
-            for (int b = 0; b < D; ++b) s += F[a][b] * body.x.c[b][i];
-            y.c[a][i] = s;
-        }
-    return y;
-}
 template <int D>
 std::array<std::array<double, D>, D> stretch(double s)
 {
