@@ -53,14 +53,6 @@ double load1()
     return l;
 }
 
-double quantile(std::vector<double> v, double q)
-{
-    std::sort(v.begin(), v.end());
-    const double h = q * (v.size() - 1);
-    const std::size_t lo = static_cast<std::size_t>(h), hi = std::min(lo + 1, v.size() - 1);
-    return v[lo] + (h - lo) * (v[hi] - v[lo]);
-}
-
 struct Scene {
     pd::Body<3> body;
     double delta = 0, dx = 0, y_notch = 0, strain = 0, dt = 0, s0 = 0;
@@ -163,11 +155,11 @@ Line measure(const Scene& s, Make make, int block, int blocks)
     }
     Line l;
     l.bonds = st.bonds.size();
-    l.step_stretch = quantile(ts, 0.5);
-    l.step_micro = quantile(tm, 0.5);
-    l.ratio = quantile(ratio, 0.5);
-    l.q25 = quantile(ratio, 0.25);
-    l.q75 = quantile(ratio, 0.75);
+    l.step_stretch = pd::io::quantile(ts, 0.5);
+    l.step_micro = pd::io::quantile(tm, 0.5);
+    l.ratio = pd::io::quantile(ratio, 0.5);
+    l.q25 = pd::io::quantile(ratio, 0.25);
+    l.q75 = pd::io::quantile(ratio, 0.75);
     l.broken_stretch = st.ex->broken_bonds;
     l.broken_micro = mi.ex->broken_bonds;
     l.unstable = st.unstable || mi.unstable;

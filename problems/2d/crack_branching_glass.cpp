@@ -193,9 +193,7 @@ static int run(int argc, char** argv)
         {"nodes", static_cast<double>(r.nodes), nan, nan, "-"},
         {"wall_time", r.wall, nan, nan, "s"}};
     pd::io::write_summary(out / "summary.csv", rows);
-    std::printf("\n%-20s %14s %14s %10s  %s\n", "quantity", "value", "reference", "rel_error", "unit");
-    for (const auto& s : rows)
-        std::printf("%-20s %14.6g %14.6g %10.3e  %s\n", s.quantity.c_str(), s.value, s.reference, s.rel_error, s.unit.c_str());
+    pd::io::print_summary(rows, 20);
 
     // Tolerances (the published values are "about" / read from figures, the load conversion is
     // not stated in spec/002): a branch must form; x_branch within 10 mm and t_branch within 25 %;

@@ -174,9 +174,7 @@ static int run(int argc, char** argv)
         {"seeds_fractured", static_cast<double>(fractured), static_cast<double>(seeds), nan, "-"},
         {"wall_time", wall, nan, nan, "s"}};
     pd::io::write_summary(out / "summary.csv", rows);
-    std::printf("\n%-28s %14s %14s %10s  %s\n", "quantity", "value", "reference", "rel_error", "unit");
-    for (const auto& r : rows)
-        std::printf("%-28s %14.6g %14.6g %10.3e  %s\n", r.quantity.c_str(), r.value, r.reference, r.rel_error, r.unit.c_str());
+    pd::io::print_summary(rows, 28);
 
     // Checks: every seed fractures; modulus within 10 % of E/(1 - nu^2) (PD surface softening of
     // the free edges and the grip transition; not a published tolerance); the weakest link fails

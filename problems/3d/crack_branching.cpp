@@ -205,9 +205,7 @@ static int run(int argc, char** argv)
         {"steps", static_cast<double>(info.steps), nan, nan, "-"},
         {"wall_time", info.wall, nan, nan, "s"}};
     pd::io::write_summary(out / "summary.csv", rows);
-    std::printf("\n%-22s %14s %14s %10s  %s\n", "quantity", "value", "reference", "rel_error", "unit");
-    for (const auto& s : rows)
-        std::printf("%-22s %14.6g %14.6g %10.3e  %s\n", s.quantity.c_str(), s.value, s.reference, s.rel_error, s.unit.c_str());
+    pd::io::print_summary(rows, 22);
 
     // The source's result is qualitative (a branch forms); the tip may not outrun the Rayleigh
     // speed; a stable run keeps displacements far below the plate height (0.1 H: a blown-up run

@@ -78,15 +78,6 @@ Runner make_runner(const Scene& sc, Make&& make)
     return r;
 }
 
-// Quantile q in [0, 1] of v, linear between order statistics (q = 0.5: the median).
-double quantile(std::vector<double> v, double q)
-{
-    std::sort(v.begin(), v.end());
-    const double h = q * (v.size() - 1);
-    const std::size_t lo = static_cast<std::size_t>(h), hi = std::min(lo + 1, v.size() - 1);
-    return v[lo] + (h - lo) * (v[hi] - v[lo]);
-}
-
 }  // namespace
 
 static int run(int argc, char** argv)
@@ -194,13 +185,13 @@ static int run(int argc, char** argv)
     std::printf("\n%-15s %9s %9s %11s %7s %13s %10s %6s %6s  %s\n", "model", "setup_s", "best_s", "bond_upd/s", "ratio",
                 "[q25, q75]", "ratio_best", "source", "target", "issue");
     for (std::size_t k = 0; k < M; ++k) {
-        const double ratio = quantile(block_ratio[k], 0.5), ratio_best = best_step[k] / best_step[0];
+        const double ratio = pd::io::quantile(block_ratio[k], 0.5), ratio_best = best_step[k] / best_step[0];
         ratios_ok = ratios_ok && std::isfinite(ratio) && ratio > 0 && std::isfinite(ratio_best) && ratio_best > 0;
         const bool meets = ratio <= target[k];
         if (k > 0) targets_met = targets_met && meets;
         std::printf("%-15s %9.3g %9.4g %11.4g %7.3f [%5.3f, %5.3f] %10.3f %6.3g %6.3g  %s\n", names[k].c_str(), best_setup[k],
-                    best_step[k], double(bonds.size()) * steps / best_step[k], ratio, quantile(block_ratio[k], 0.25),
-                    quantile(block_ratio[k], 0.75), ratio_best, source[k], target[k],
+                    best_step[k], double(bonds.size()) * steps / best_step[k], ratio, pd::io::quantile(block_ratio[k], 0.25),
+                    pd::io::quantile(block_ratio[k], 0.75), ratio_best, source[k], target[k],
                     k == 0 ? "-" : meets ? "met" : "NOT met");
         if (k > 0) rows.push_back({"cost_ratio_" + names[k], ratio, source[k], pd::io::relative_error(ratio, source[k]), "-"});
     }

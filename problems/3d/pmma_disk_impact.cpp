@@ -197,9 +197,7 @@ static int run(int argc, char** argv)
         {"broken_bonds", static_cast<double>(o.broken), nan, nan, "-"},
         {"wall_time", o.wall, nan, nan, "s"}};
     pd::io::write_summary(out / "summary.csv", rows);
-    std::printf("\n%-28s %14s %14s %10s  %s\n", "quantity", "value", "reference", "rel_error", "unit");
-    for (const auto& r : rows)
-        std::printf("%-28s %14.6g %14.6g %10.3e  %s\n", r.quantity.c_str(), r.value, r.reference, r.rel_error, r.unit.c_str());
+    pd::io::print_summary(rows, 28);
 
     // Checks: the energy balance closes within 2 % of E0 while no bond breaks under the tip
     // (Verlet O(dt^2) with the stiff penalty; measured 1e-5 .. 1e-4); the tip decelerates; the

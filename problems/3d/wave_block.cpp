@@ -206,9 +206,7 @@ static int run(int argc, char** argv)
         disp.row({k, latt.omega(k), latt.phase_velocity(k), latt.group_velocity(k), cont.phase_velocity(k), cont.group_velocity(k),
                   std::exp(-0.5 * k * k * w * w)});
     }
-    std::printf("\n%-36s %14s %14s %10s  %s\n", "quantity", "value", "reference", "rel_error", "unit");
-    for (const auto& r : rows)
-        std::printf("%-36s %14.7g %14.7g %10.3e  %s\n", r.quantity.c_str(), r.value, r.reference, r.rel_error, r.unit.c_str());
+    pd::io::print_summary(rows, 36, 7);
 
     // Tolerances (reasons in reports/3d/wave_block.md): speed 1e-4 (seen 1e-11 to 1e-6: second-order
     // nonlinearity, slow tails crossing the centre; the gaps to continuum and c_P are 1e-2); momentum

@@ -22,6 +22,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <concepts>
 #include <cstdint>
 #include <cstdlib>
@@ -216,6 +217,16 @@ inline void write_summary(const std::filesystem::path& path, const std::vector<S
 {
     CsvWriter csv(path, {"quantity", "value", "reference", "rel_error", "unit"});
     for (const auto& r : rows) csv.row({r.quantity, r.value, r.reference, r.rel_error, r.unit});
+}
+
+// Prints the summary rows as the drivers' table on stdout: quantity column name_width wide,
+// value and reference with `digits` significant digits.
+inline void print_summary(const std::vector<SummaryRow>& rows, int name_width, int digits = 6)
+{
+    std::printf("\n%-*s %14s %14s %10s  %s\n", name_width, "quantity", "value", "reference", "rel_error", "unit");
+    for (const auto& r : rows)
+        std::printf("%-*s %14.*g %14.*g %10.3e  %s\n", name_width, r.quantity.c_str(), digits, r.value, digits, r.reference, r.rel_error,
+                    r.unit.c_str());
 }
 
 // ------------------------------------------------------------------------------------- reader

@@ -12,12 +12,13 @@
 //     for (long n = 0; n < n_steps; ++n) { step(); progress.update(n + 1); }
 //     progress.finish();
 #pragma once
-
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace pd::io {
 
@@ -39,6 +40,16 @@ private:
     using clock = std::chrono::steady_clock;
     clock::time_point start_;
 };
+
+// Quantile q in [0, 1] of v, linear between order statistics (q = 0.5: the median); for the
+// interleaved timing ratios of problems/3d/model_cost.cpp and bench/damage_cost.cpp.
+inline double quantile(std::vector<double> v, double q)
+{
+    std::sort(v.begin(), v.end());
+    const double h = q * (v.size() - 1);
+    const std::size_t lo = static_cast<std::size_t>(h), hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (h - lo) * (v[hi] - v[lo]);
+}
 
 class Progress {
 public:
