@@ -74,22 +74,12 @@ std::vector<V3> reference_force(const Body<3>& body, const Bonds& b, const Field
         }
     return f;
 }
-}  // namespace
 
-// Random non-affine deformation (finite affine part plus nodal noise, so the hourglass term is
-// not zero), every 7th bond pair broken, C_hg = 0.02; linear and Saint Venant-Kirchhoff laws.
-// Tolerance: the two evaluations sum the same ~100 terms per node in different orders and
-// groupings (lane sums, i-end term factored out), each term with relative round-off ~1e-15, so
-// they agree to ~1e-14 of the sum of term magnitudes; 1e-12 leaves margin and is far below any
-// formula error (a wrong sign or a missing term changes f by O(1) of that scale).
-TEST(CorrespondenceReference, OptimisedForceEqualsTextbookFormulaWithDamageAndHourglass)
+// Random non-affine deformation of the lattice: finite affine part plus nodal noise (2 % of dx), so
+// the hourglass term is not zero.
+Field<3> random_deformation(const Body<3>& body, unsigned seed)
 {
-    auto body = box<3>({{0, 0, 0}}, {{7 * dx, 6 * dx, 5 * dx}}, dx);
-    Bonds b = build_bonds(body, m_ratio * dx);
-    b.enable_damage();
-    for (std::size_t k = 0; k < b.size(); k += 7) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
-    const Elastic steel = Elastic::from_E_nu(200e9, 0.3);
-    std::mt19937 gen(17);
+    std::mt19937 gen(seed);
     std::uniform_real_distribution<double> U(-1, 1);
     M3 G;
     for (int a = 0; a < 3; ++a) for (int c = 0; c < 3; ++c) G(a, c) = (a == c) + 0.05 * U(gen);
@@ -97,8 +87,19 @@ TEST(CorrespondenceReference, OptimisedForceEqualsTextbookFormulaWithDamageAndHo
     for (std::size_t i = 0; i < body.size(); ++i) {
         const V3 x(body.x.c[0][i], body.x.c[1][i], body.x.c[2][i]);
         const V3 yi = G * x;
-        for (int d = 0; d < 3; ++d) y.c[d][i] = yi(d) + 2e-5 * U(gen);  // noise 2 % of dx [m]
+        for (int d = 0; d < 3; ++d) y.c[d][i] = yi(d) + 2e-5 * U(gen);  // noise [m]
     }
+    return y;
+}
+
+// The model's force against the textbook one, C_hg = 0.02, linear and Saint Venant-Kirchhoff laws.
+// Tolerance: the two evaluations sum the same ~100 terms per node in different orders and
+// groupings (lane or chunk sums, i-end term factored out), each term with relative round-off
+// ~1e-15, so they agree to ~1e-14 of the sum of term magnitudes; 1e-12 leaves margin and is far
+// below any formula error (a wrong sign or a missing term changes f by O(1) of that scale).
+void expect_textbook_force(const Body<3>& body, const Bonds& b, const Field<3>& y)
+{
+    const Elastic steel = Elastic::from_E_nu(200e9, 0.3);
     using C3 = Correspondence<3>;
     for (RefLaw law : {RefLaw::linear, RefLaw::svk}) {
         C3 model({steel, law == RefLaw::linear ? C3::Law::linear : C3::Law::saint_venant_kirchhoff, 0.02}, body, b);
@@ -116,10 +117,48 @@ TEST(CorrespondenceReference, OptimisedForceEqualsTextbookFormulaWithDamageAndHo
         C3 plain({steel, law == RefLaw::linear ? C3::Law::linear : C3::Law::saint_venant_kirchhoff}, body, b);
         Field<3> f0;
         internal_force(plain, b, y, f0);
+        double worst0 = 0;
+        std::vector<double> scale0;
+        const std::vector<V3> ref0 = reference_force(body, b, y, steel, law, 0, scale0);
         for (std::size_t i = 0; i < body.size(); ++i)
-            for (int d = 0; d < 3; ++d) hg_part = std::max(hg_part, std::abs(f.c[d][i] - f0.c[d][i]) / scale[i]);
-        std::printf("law %d: max abs(f - f_ref)/scale = %.2e, max hourglass part/scale = %.2e\n", int(law), worst, hg_part);
+            for (int d = 0; d < 3; ++d) {
+                hg_part = std::max(hg_part, std::abs(f.c[d][i] - f0.c[d][i]) / scale[i]);
+                worst0 = std::max(worst0, std::abs(f0.c[d][i] - ref0[i](d)) / scale0[i]);
+            }
+        std::printf("law %d: max abs(f - f_ref)/scale = %.2e (C_hg = 0: %.2e), max hourglass part/scale = %.2e\n",
+                    int(law), worst, worst0, hg_part);
         EXPECT_LT(worst, 1e-12) << "law " << int(law);
+        EXPECT_LT(worst0, 1e-12) << "law " << int(law);
         EXPECT_GT(hg_part, 1e-3) << "law " << int(law);
     }
+}
+}  // namespace
+
+// Every 7th bond pair broken (the per-node code with damage).
+TEST(CorrespondenceReference, OptimisedForceEqualsTextbookFormulaWithDamageAndHourglass)
+{
+    auto body = box<3>({{0, 0, 0}}, {{7 * dx, 6 * dx, 5 * dx}}, dx);
+    Bonds b = build_bonds(body, m_ratio * dx);
+    b.enable_damage();
+    for (std::size_t k = 0; k < b.size(); k += 7) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+    expect_textbook_force(body, b, random_deformation(body, 17));
+}
+
+// Undamaged lattice with x-rows of 24 nodes: the nodes 3 .. 20 of a row have translated families,
+// so the chunk kernels (stencil_runs.hpp, correspondence_chunks.hpp) take most nodes and the
+// per-node code the rest; both must give the textbook force.
+TEST(CorrespondenceReference, ChunkedForceEqualsTextbookFormula)
+{
+    auto body = box<3>({{0, 0, 0}}, {{24 * dx, 5 * dx, 4 * dx}}, dx);
+    const Bonds b = build_bonds(body, m_ratio * dx);
+    const Correspondence<3> probe({Elastic::from_E_nu(200e9, 0.3)}, body, b);
+#ifdef PD_CHUNK_WIDTH
+    // 5 x 4 rows of 18 translated nodes each: 16 of them in chunks of 8 (AVX-512) or 4 (AVX2).
+    const std::size_t rows = 5 * 4, per_row = 18 / detail::chunk_width * detail::chunk_width;
+    EXPECT_EQ(probe.runs.chunked_nodes(), rows * per_row);
+    EXPECT_EQ(probe.runs.rest.size(), body.size() - rows * per_row);
+#else
+    EXPECT_EQ(probe.runs.chunked_nodes(), 0u);
+#endif
+    expect_textbook_force(body, b, random_deformation(body, 23));
 }

@@ -27,6 +27,18 @@
 // which returns the whole f_i (node term included) and may vectorise its own way, but must add
 // bond begin(i) + l + 8 m into partial sum l and reduce as LaneSum does, so that the result does
 // not depend on the threads (correspondence: the partner matrices read within the bond, 3D AVX2).
+// Chunk kernels: a kernel may also supply
+//   const StencilRuns* chunks(const Bonds&) const;   // null when it has none for these bonds
+// and, for chunks of W nodes with translated families (stencil_runs.hpp, chunk_simd.hpp), either
+//   vchunk chunk_scalar(int i0, std::int64_t k, int j, const vchunk& ylen) const;  // ordinary
+//        // bond_scalar of bond k of node i0 (partner j) for the W lanes i0 + l (partners j + l)
+// or
+//   void chunk_force(int i0, const Bonds&, const Field<D>& y, Field<D>& f) const;  // f of i0 .. i0 + W - 1
+// In undamaged scenes without per-bond output the bond pass then takes the chunks W nodes at a
+// time (node j's values as contiguous vectors, per-bond data as node i0's scalars) and the other
+// nodes with the per-node code; the split is fixed by the bonds, so results still do not depend on
+// the threads. Each lane sums its bonds in family order (not the 8 partial sums below); the
+// results differ from the per-node code's at round-off only.
 // Per-bond output (optional, for critical-micropotential damage): internal_force(model, bonds, y, f, &out)
 // also stores each intact bond's force density with both ends' states included, bond k in entry k of
 //   ordinary models:     out.c[0][k] = t_k, the bond_scalar (force on i is t_k Y)  [N/m^7 in 3D]
@@ -47,6 +59,8 @@
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
 #include "pd/parallel.hpp"
+#include "pd/chunk_simd.hpp"
+#include "pd/stencil_runs.hpp"
 
 #include <bit>
 #include <cmath>
@@ -105,6 +119,29 @@ constexpr bool is_ordinary()
     else return true;
 }
 
+#ifdef PD_CHUNK_WIDTH
+// f of the W nodes i0 + l of a chunk for an ordinary model: sum over node i0's bonds k (partners
+// j + l) of t Y, with Y = y_(j + l) - y_(i0 + l) and t = model.chunk_scalar(i0, k, j, |Y|), the
+// bond_scalar of the W lanes.
+template <int D, class Model>
+void ordinary_chunk(const Model& model, const Bonds& b, int i0, const Field<D>& y, Field<D>& f)
+{
+    vchunk yi[D], acc[D] = {};
+    for (int d = 0; d < D; ++d) yi[d] = load_chunk(y.c[d].data() + i0);
+    for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
+        const int j = b.partner[k];
+        vchunk Y[D], len2 = {};
+        for (int d = 0; d < D; ++d) {
+            Y[d] = load_chunk(y.c[d].data() + j) - yi[d];
+            len2 += Y[d] * Y[d];
+        }
+        const vchunk t = model.chunk_scalar(i0, k, j, sqrt_chunk(len2));
+        for (int d = 0; d < D; ++d) acc[d] += t * Y[d];
+    }
+    for (int d = 0; d < D; ++d) store_chunk(f.c[d].data() + i0, acc[d]);
+}
+#endif
+
 template <bool Damaged, bool Out, int D, class Model>
 void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondForces* out = nullptr)
 {
@@ -118,53 +155,68 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     const double* y0 = y.c[0].data();
     const double* y1 = D > 1 ? y.c[1].data() : nullptr;
     const double* y2 = D > 2 ? y.c[2].data() : nullptr;
-    if constexpr (requires { model.template family_force<Damaged>(std::size_t{}, bonds, y); }) {
-        parallel_for(bonds.nodes(), [&](std::size_t i) {
+    auto node = [&](std::size_t i) {
+        if constexpr (requires { model.template family_force<Damaged>(std::size_t{}, bonds, y); }) {
             const Vec<D> fi = model.template family_force<Damaged, Out>(i, bonds, y, g);
             for (int d = 0; d < D; ++d) f.c[d][i] = fi[d];
-        });
-        return;
-    }
-    parallel_for(bonds.nodes(), [&](std::size_t i) {
-        LaneSum<D> sum;
-        const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
-        for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
-            const int j = partner[k];
-            const double Y0 = y0[j] - yi0;
-            const double Y1 = D > 1 ? y1[j] - yi1 : 0;
-            const double Y2 = D > 2 ? y2[j] - yi2 : 0;
-            if constexpr (is_ordinary<Model>()) {
-                double ylen = std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2);  // |Y| [m]
-                // A broken bond is zeroed by the factor keep; lengthening it by 1 m first keeps a
-                // broken bond of zero length from giving inf * 0 = NaN (no effect on intact bonds).
-                if constexpr (Damaged) ylen += 1.0 - keep;
-                double t = model.bond_scalar(i, k, j, ylen);
-                if constexpr (Damaged) t *= keep;
-                if constexpr (Out) g[0][k] = t;
-                sum.s[0][l] += t * Y0;
-                if constexpr (D > 1) sum.s[1][l] += t * Y1;
-                if constexpr (D > 2) sum.s[2][l] += t * Y2;
-            } else {
-                Vec<D> Y;
-                Y[0] = Y0;
-                if constexpr (D > 1) Y[1] = Y1;
-                if constexpr (D > 2) Y[2] = Y2;
-                Vec<D> fk = model.bond_force(i, k, j, Y);  // must be finite for broken bonds too
-                if constexpr (Damaged) fk *= keep;
-                for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
-                if constexpr (Out) {
-                    if constexpr (requires { model.node_force(i); }) fk += keep * model.node_share(i, k, j);
-                    for (int d = 0; d < D; ++d) g[d][k] = fk[d];
-                }
-            }
-        });
-        if constexpr (requires { model.node_force(i); }) {
-            const Vec<D> fn = model.node_force(i);
-            for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d) + fn[d];
         } else {
-            for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
+            LaneSum<D> sum;
+            const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
+            for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
+                const int j = partner[k];
+                const double Y0 = y0[j] - yi0;
+                const double Y1 = D > 1 ? y1[j] - yi1 : 0;
+                const double Y2 = D > 2 ? y2[j] - yi2 : 0;
+                if constexpr (is_ordinary<Model>()) {
+                    double ylen = std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2);  // |Y| [m]
+                    // A broken bond is zeroed by the factor keep; lengthening it by 1 m first keeps a
+                    // broken bond of zero length from giving inf * 0 = NaN (no effect on intact bonds).
+                    if constexpr (Damaged) ylen += 1.0 - keep;
+                    double t = model.bond_scalar(i, k, j, ylen);
+                    if constexpr (Damaged) t *= keep;
+                    if constexpr (Out) g[0][k] = t;
+                    sum.s[0][l] += t * Y0;
+                    if constexpr (D > 1) sum.s[1][l] += t * Y1;
+                    if constexpr (D > 2) sum.s[2][l] += t * Y2;
+                } else {
+                    Vec<D> Y;
+                    Y[0] = Y0;
+                    if constexpr (D > 1) Y[1] = Y1;
+                    if constexpr (D > 2) Y[2] = Y2;
+                    Vec<D> fk = model.bond_force(i, k, j, Y);  // must be finite for broken bonds too
+                    if constexpr (Damaged) fk *= keep;
+                    for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
+                    if constexpr (Out) {
+                        if constexpr (requires { model.node_force(i); }) fk += keep * model.node_share(i, k, j);
+                        for (int d = 0; d < D; ++d) g[d][k] = fk[d];
+                    }
+                }
+            });
+            if constexpr (requires { model.node_force(i); }) {
+                const Vec<D> fn = model.node_force(i);
+                for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d) + fn[d];
+            } else {
+                for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
+            }
         }
-    });
+    };
+    // Chunks of translated families (stencil_runs.hpp), undamaged scenes only: W nodes per call.
+    auto chunked = [&](const StencilRuns& runs, auto&& chunk) {
+        parallel_for(runs.chunk_start.size(), [&](std::size_t q) { chunk(runs.chunk_start[q]); });
+        parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
+    };
+    if constexpr (!Damaged && requires { model.chunks(bonds); model.chunk_force(0, bonds, y, f); }) {
+        if (const StencilRuns* runs = model.chunks(bonds))
+            return chunked(*runs, [&](int i0) { model.chunk_force(i0, bonds, y, f); });
+    }
+#ifdef PD_CHUNK_WIDTH
+    if constexpr (!Damaged && is_ordinary<Model>() && requires(const vchunk& v) { model.chunks(bonds); model.chunk_scalar(0, std::int64_t{}, 0, v); }) {
+        static_assert(!requires { model.node_force(std::size_t{}); }, "ordinary chunk kernels have no node term");
+        if (const StencilRuns* runs = model.chunks(bonds))
+            return chunked(*runs, [&](int i0) { ordinary_chunk(model, bonds, i0, y, f); });
+    }
+#endif
+    parallel_for(bonds.nodes(), node);
 }
 }  // namespace detail
 

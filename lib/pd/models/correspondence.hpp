@@ -39,7 +39,9 @@
 #include "pd/influence.hpp"
 #include "pd/lattice.hpp"
 #include "pd/material.hpp"
+#include "pd/models/correspondence_chunks.hpp"
 #include "pd/models/pmb.hpp"
+#include "pd/stencil_runs.hpp"
 #include "pd/parallel.hpp"
 
 #include <Eigen/Dense>
@@ -105,6 +107,11 @@ struct Correspondence {
     std::vector<double, Aligned64> blocks;
     std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
     static constexpr int BS = 24;     // doubles per node block
+    // Chunks of translated families (stencil_runs.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
+    // the bond pass and the deformation sums take W nodes at once (correspondence_chunks.hpp), reading
+    // A = P K^-1 and F from `soa` (18 arrays of nodes() doubles, written by point_pass).
+    StencilRuns runs;
+    std::vector<double> soa;
 
     Correspondence() = default;
     Correspondence(const Params& p, const Body<D>& body, const Bonds& b)
@@ -127,12 +134,17 @@ struct Correspondence {
             R.assign(b.nodes(), Mat::Identity());
             V.assign(b.nodes(), Mat::Identity());
         }
-        if (D == 3) {
+        if constexpr (D == 3) {
             blocks.assign(BS * b.nodes(), 0.0);
             xpad.assign(4 * b.nodes(), 0.0);
             ypad.assign(4 * b.nodes(), 0.0);
             for (std::size_t i = 0; i < b.nodes(); ++i)
                 for (int d = 0; d < D; ++d) xpad[4 * i + d] = x.c[d][i];
+#ifdef PD_CHUNK_WIDTH
+            const std::initializer_list<const std::vector<double>*> xc{&x.c[0], &x.c[1], &x.c[2]};
+            runs = c_hg != 0 ? find_stencil_runs(b, detail::chunk_width, {&wV, &hg}, xc) : find_stencil_runs(b, detail::chunk_width, {&wV}, xc);
+            if (!runs.chunk_start.empty()) soa.assign(18 * b.nodes(), 0.0);
+#endif
         }
         shape_tensors(b);
     }
@@ -262,6 +274,8 @@ struct Correspondence {
         const double* A;           // P K^-1 per node, D x D column-major blocks [Pa/m^5]
         const double* F;           // F per node, D x D column-major blocks [-] (Hourglass only)
         const double* blk;         // per node A and F, 4-padded columns (Correspondence::blocks; 3D)
+        const StencilRuns* runs;   // chunks of translated families (3D, AVX2/AVX-512), or null
+        const double* soa;         // A and F per node as 18 arrays (chunks only)
         Vec<D> node_force(std::size_t i) const
         {
             Vec<D> f;
@@ -302,6 +316,18 @@ struct Correspondence {
             }
             return f;
         }
+#ifdef PD_CHUNK_WIDTH
+        // Chunk hook of the bond loop (bond_loop.hpp): f of nodes i0 .. i0 + W - 1, undamaged.
+        const StencilRuns* chunks(const Bonds& b) const { return runs && runs->fits(b) ? runs : nullptr; }
+        void chunk_force(int i0, const Bonds& b, const Field<D>& y, Field<D>& f) const
+            requires(D == 3)
+        {
+            const detail::ChunkBonds t{b.offset.data(), b.partner.data(), {x[0], x[1], x[2]}, wV, hg};
+            const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
+            double* fc[3] = {f.c[0].data(), f.c[1].data(), f.c[2].data()};
+            detail::chunk_forces<Hourglass>(t, i0, yc, soa, runs->nodes, f_own, fc);
+        }
+#endif
 #ifdef PD_CORRESPONDENCE_AVX2
         // 4 x 4 transpose of the first 3 entries: r[b][d] -> out[d][b].
         static void transpose3(const __m256d* r, __m256d* out)
@@ -420,6 +446,8 @@ struct Correspondence {
         kn.A = PKinv.empty() ? nullptr : PKinv.front().data();
         kn.F = F.empty() ? nullptr : F.front().data();
         kn.blk = blocks.empty() ? nullptr : blocks.data();
+        kn.runs = soa.empty() ? nullptr : &runs;
+        kn.soa = soa.empty() ? nullptr : soa.data();
         return kn;
     }
     // Calls pass(kernel) with the hourglass term compiled in or out (bond_loop.hpp).
@@ -514,6 +542,28 @@ private:
 #else
         constexpr bool fast = false;
 #endif
+#ifdef PD_CHUNK_WIDTH
+        if constexpr (fast)
+            if (!soa.empty() && runs.fits(b)) {  // chunks of W nodes, then the other nodes
+                const detail::ChunkBonds t{b.offset.data(), b.partner.data(), {x.c[0].data(), x.c[1].data(), x.c[2].data()}, wV.data(), nullptr};
+                const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
+                parallel_for(runs.chunk_start.size(), [&](std::size_t q) {
+                    const int i0 = runs.chunk_start[q];
+                    double N[DD][detail::chunk_width];
+                    detail::chunk_deformation_sums(t, i0, yc, N);
+                    for (int l = 0; l < detail::chunk_width; ++l) {
+                        Mat Nl;
+                        for (int e = 0; e < DD; ++e) Nl(e % D, e / D) = N[e][l];
+                        node_stress(static_cast<std::size_t>(i0 + l), Nl);
+                    }
+                });
+                parallel_for(runs.rest.size(), [&](std::size_t q) {
+                    const auto i = static_cast<std::size_t>(runs.rest[q]);
+                    node_stress(i, this->deformation_sum(b, i));
+                });
+                return;
+            }
+#endif
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
@@ -523,31 +573,37 @@ private:
                 Kinv[i] = inverse_or_zero(K);
                 for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
             }
-            if (Kinv[i].isZero(0)) {
-                F[i] = Mat::Identity();
-                P[i] = PKinv[i] = Mat::Zero();
-                for (int d = 0; d < D; ++d) f_own.c[d][i] = 0;
-                write_block(i);
-                return;
-            }
-            F[i] = N * Kinv[i];
-            if (par.law == Law::linear) {
-                sigma[i] = linear_stress(F[i]);
-                P[i] = sigma[i];
-            } else if (par.law == Law::saint_venant_kirchhoff) {
-                P[i] = F[i] * svk_stress(F[i]);                                   // P = F S
-                sigma[i] = P[i] * F[i].transpose() / F[i].determinant();          // sigma = P F^T / J
-            } else {
-                P[i] = F[i].determinant() * sigma[i] * F[i].inverse().transpose();  // P = J sigma F^-T
-            }
-            PKinv[i] = P[i] * Kinv[i];
-            for (int a = 0; a < D; ++a) {
-                double s = 0;
-                for (int c = 0; c < D; ++c) s += PKinv[i](a, c) * m_xi.c[c][i];
-                f_own.c[a][i] = s;
-            }
-            write_block(i);
+            node_stress(i, N);
         });
+    }
+
+    // F = N K^-1, the stress law, P K^-1 and the i-end force of node i (K^-1 already current).
+    void node_stress(std::size_t i, const Mat& N)
+    {
+        if (Kinv[i].isZero(0)) {
+            F[i] = Mat::Identity();
+            P[i] = PKinv[i] = Mat::Zero();
+            for (int d = 0; d < D; ++d) f_own.c[d][i] = 0;
+            write_block(i);
+            return;
+        }
+        F[i] = N * Kinv[i];
+        if (par.law == Law::linear) {
+            sigma[i] = linear_stress(F[i]);
+            P[i] = sigma[i];
+        } else if (par.law == Law::saint_venant_kirchhoff) {
+            P[i] = F[i] * svk_stress(F[i]);                                   // P = F S
+            sigma[i] = P[i] * F[i].transpose() / F[i].determinant();          // sigma = P F^T / J
+        } else {
+            P[i] = F[i].determinant() * sigma[i] * F[i].inverse().transpose();  // P = J sigma F^-T
+        }
+        PKinv[i] = P[i] * Kinv[i];
+        for (int a = 0; a < D; ++a) {
+            double s = 0;
+            for (int c = 0; c < D; ++c) s += PKinv[i](a, c) * m_xi.c[c][i];
+            f_own.c[a][i] = s;
+        }
+        write_block(i);
     }
 
 #ifdef PD_CORRESPONDENCE_AVX2
@@ -586,6 +642,13 @@ private:
     // blocks of node i from PKinv[i] and F[i] (3D).
     void write_block(std::size_t i)
     {
+        if (!soa.empty()) {
+            const std::size_t n = F.size();
+            for (int e = 0; e < DD; ++e) {
+                soa[e * n + i] = PKinv[i](e % D, e / D);
+                soa[(DD + e) * n + i] = F[i](e % D, e / D);
+            }
+        }
         if constexpr (D == 3) {
             double* B = blocks.data() + BS * i;
             for (int c = 0; c < 3; ++c)

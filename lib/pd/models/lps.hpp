@@ -32,14 +32,18 @@
 // Cost (issue 3; reports/3d/model_cost.md): internal_force uses Kernel (with_kernel), which reads
 // a_j = (p_j - alpha_j / D) theta_j and alpha_j precombined by point_pass instead of p_j, theta_j,
 // alpha_j, with no division by D per bond (about 2.07x PMB per step, was 2.20x); bond_scalar still
-// reads theta, p_coef and alpha, for callers that edit them between the passes.
+// reads theta, p_coef and alpha, for callers that edit them between the passes. Nodes with
+// translated families (stencil_runs.hpp: same |xi| and omega V_j bond by bond) take both passes
+// W nodes at a time in undamaged scenes (dilatation_chunk, Kernel::chunk_scalar).
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
+#include "pd/chunk_simd.hpp"
 #include "pd/field.hpp"
 #include "pd/material.hpp"
 #include "pd/models/scf.hpp"
 #include "pd/parallel.hpp"
+#include "pd/stencil_runs.hpp"
 
 #include <functional>
 #include <stdexcept>
@@ -70,6 +74,7 @@ struct LPS {
     Params::WeightedVolume weighted_volume = Params::WeightedVolume::intact;
     // SCF from positions, re-evaluated by recompute (intact rule); empty for given factors.
     std::function<std::vector<double>(const Bonds&)> scf_source;
+    StencilRuns runs;              // chunks of translated families (stencil_runs.hpp)
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
@@ -80,6 +85,9 @@ struct LPS {
     {
         for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
         weighted_volumes(b);
+#ifdef PD_CHUNK_WIDTH
+        runs = find_stencil_runs(b, detail::chunk_width, {&b.length, &wV});
+#endif
     }
 
     // After bonds broke: with the intact rule, m_i over the intact bonds (4.8), p_coef, alpha and
@@ -145,15 +153,26 @@ struct LPS {
         const double* wV;      // omega V_j per bond [m^3]
         const double* a;       // a_coef per node [Pa/m^5]
         const double* alpha;   // alpha per node [Pa/m^5]
+        const StencilRuns* runs;
         double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
         {
             const double L = length[k];
             const double tij = L * (a[i] + a[j]) + (alpha[i] + alpha[j]) * (ylen - L);
             return tij * wV[k] / ylen;
         }
+        const StencilRuns* chunks(const Bonds& b) const { return runs->fits(b) && !runs->chunk_start.empty() ? runs : nullptr; }
+#ifdef PD_CHUNK_WIDTH
+        detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
+        {
+            using detail::load_chunk;
+            const double L = length[k];
+            const detail::vchunk tij = L * (load_chunk(a + i0) + load_chunk(a + j)) + (load_chunk(alpha + i0) + load_chunk(alpha + j)) * (ylen - L);
+            return tij * wV[k] / ylen;
+        }
+#endif
     };
     // Valid after point_pass (a_coef of the current y, alpha of the current correction).
-    Kernel kernel() const { return {bonds->length.data(), wV.data(), a_coef.data(), alpha.data()}; }
+    Kernel kernel() const { return {bonds->length.data(), wV.data(), a_coef.data(), alpha.data(), &runs}; }
     template <class Pass>
     void with_kernel(Pass&& pass) const { pass(kernel()); }
 
@@ -212,7 +231,7 @@ private:
         const double* y0 = y.c[0].data();
         const double* y1 = D > 1 ? y.c[1].data() : nullptr;
         const double* y2 = D > 2 ? y.c[2].data() : nullptr;
-        parallel_for(b.nodes(), [&](std::size_t i) {
+        auto node = [&](std::size_t i) {
             detail::LaneSum<1> sum;
             const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
             detail::for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
@@ -224,11 +243,46 @@ private:
                 if constexpr (Damaged) s *= keep;
                 sum.s[0][l] += s;
             });
-            const double th = m[i] > 0 ? D * sum.total(0) / m[i] : 0.0;
-            theta[i] = th;
-            a_coef[i] = (p_coef[i] - alpha[i] / dim) * th;
-        });
+            set_dilatation(i, D * sum.total(0));
+        };
+#ifdef PD_CHUNK_WIDTH
+        if constexpr (!Damaged)
+            if (runs.fits(b) && !runs.chunk_start.empty()) {
+                parallel_for(runs.chunk_start.size(), [&](std::size_t q) { dilatation_chunk(b, y, runs.chunk_start[q]); });
+                parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
+                return;
+            }
+#endif
+        parallel_for(b.nodes(), node);
     }
+    // theta_i = sum / m_i, sum = D sum_j omega |xi| e V_j, and a_coef_i.
+    void set_dilatation(std::size_t i, double sum)
+    {
+        const double th = m[i] > 0 ? sum / m[i] : 0.0;
+        theta[i] = th;
+        a_coef[i] = (p_coef[i] - alpha[i] / dim) * th;
+    }
+#ifdef PD_CHUNK_WIDTH
+    // The same for the W nodes i0 + l of a chunk (node i0's |xi| and omega V_j, partners j + l).
+    template <int D>
+    void dilatation_chunk(const Bonds& b, const Field<D>& y, int i0)
+    {
+        using detail::load_chunk;
+        detail::vchunk yi[D], sum = {};
+        for (int d = 0; d < D; ++d) yi[d] = load_chunk(y.c[d].data() + i0);
+        for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
+            const int j = b.partner[k];
+            detail::vchunk len2 = {};
+            for (int d = 0; d < D; ++d) {
+                const detail::vchunk Y = load_chunk(y.c[d].data() + j) - yi[d];
+                len2 += Y * Y;
+            }
+            const double L = b.length[k];
+            sum += (wV[k] * L) * (detail::sqrt_chunk(len2) - L);
+        }
+        for (int l = 0; l < detail::chunk_width; ++l) set_dilatation(static_cast<std::size_t>(i0 + l), D * sum[l]);
+    }
+#endif
 };
 
 }  // namespace pd

@@ -153,6 +153,9 @@ void PALS::recompute(const Bonds& b)
         }
         m_sigma[i] = ms;
     });
+#ifdef PD_CHUNK_WIDTH
+    runs = b.has_damage() ? StencilRuns{} : find_stencil_runs(b, detail::chunk_width, {&b.length, &w_i, &w_j, &s_i, &s_j});
+#endif
 }
 
 }  // namespace pd

@@ -28,14 +28,18 @@
 // Multipliers use the intact bonds; after damage call recompute(bonds) (Explicit does it whenever
 // bonds break, time/verlet.hpp): the damaged body is then the body built without the broken bonds
 // (tests/test_damage_models.cpp). Before recompute the multipliers are those of the old families.
+// Cost: nodes with translated families (stencil_runs.hpp: same |xi|, w_i, w_j, s_i, s_j bond by
+// bond, found by recompute) take both passes W nodes at a time in undamaged scenes.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
+#include "pd/chunk_simd.hpp"
 #include "pd/field.hpp"
 #include "pd/influence.hpp"
 #include "pd/lattice.hpp"
 #include "pd/material.hpp"
 #include "pd/parallel.hpp"
+#include "pd/stencil_runs.hpp"
 
 #include <array>
 #include <vector>
@@ -63,6 +67,7 @@ struct PALS {
     std::vector<double> p;              // PALS pressure p_i, updated by point_pass [Pa]
     std::vector<double> w_i, w_j;       // omega_i<xi> V_j and omega_j<xi> V_j per bond i->j [1/m^2]
     std::vector<double> s_i, s_j;       // 2G sigma_i<xi> V_j and 2G sigma_j<xi> V_j per bond [Pa/m^2]
+    StencilRuns runs;                   // chunks of translated families (set by recompute)
     int singular_nodes = 0;             // nodes with a singular system (see header), after recompute
     const Bonds* bonds = nullptr;
     const Field<3>* x = nullptr;        // reference positions of the body [m] (kept for recompute)
@@ -99,6 +104,19 @@ struct PALS {
                            + e * (s_i[k] + s_j[k]);
         return tij / ylen;
     }
+    // Chunk hooks of the bond loop (bond_loop.hpp): bond_scalar for the W nodes of a chunk.
+    const StencilRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
+#ifdef PD_CHUNK_WIDTH
+    detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
+    {
+        using detail::load_chunk;
+        const double L = length[k];
+        const detail::vchunk tij = L * (load_chunk(p.data() + i0) * w_i[k] + load_chunk(p.data() + j) * w_j[k]
+                                        - third * (load_chunk(theta.data() + i0) * s_i[k] + load_chunk(theta.data() + j) * s_j[k]))
+                                   + (ylen - L) * (s_i[k] + s_j[k]);
+        return tij / ylen;
+    }
+#endif
 
     // W_i = K theta_i^2 / 2 + G (sigma_i e_d)•e_d (4.15) [J/m^3]; call after point_pass at y.
     template <int D>
@@ -135,7 +153,7 @@ private:
         const double* y0 = y.c[0].data();
         const double* y1 = y.c[1].data();
         const double* y2 = y.c[2].data();
-        parallel_for(b.nodes(), [&](std::size_t i) {
+        auto node = [&](std::size_t i) {
             detail::LaneSum<2> sum;
             const double yi0 = y0[i], yi1 = y1[i], yi2 = y2[i];
             detail::for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
@@ -146,12 +164,48 @@ private:
                 sum.s[0][l] += wi[k] * xe;
                 sum.s[1][l] += si[k] * xe;
             });
-            const double th = sum.total(0);
-            theta[i] = th;
-            // p_i = (K + 2G m_sigma/9) theta - (2G/3)(sigma x)•e; s_i already holds 2G sigma V.
-            p[i] = (K + 2 * G * m_sigma[i] / 9) * th - third * sum.total(1);
-        });
+            set_dilatation(i, sum.total(0), sum.total(1));
+        };
+#ifdef PD_CHUNK_WIDTH
+        if constexpr (!Damaged)
+            if (runs.fits(b) && !runs.chunk_start.empty()) {
+                parallel_for(runs.chunk_start.size(), [&](std::size_t q) { dilatation_chunk(b, y, runs.chunk_start[q]); });
+                parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
+                return;
+            }
+#endif
+        parallel_for(b.nodes(), node);
     }
+    // theta_i = (omega_i x)•e and p_i = (K + 2G m_sigma/9) theta - (2G/3)(sigma x)•e from the
+    // two family sums (s_i already holds 2G sigma V).
+    void set_dilatation(std::size_t i, double omega_xe, double sigma_xe)
+    {
+        theta[i] = omega_xe;
+        p[i] = (K + 2 * G * m_sigma[i] / 9) * omega_xe - third * sigma_xe;
+    }
+#ifdef PD_CHUNK_WIDTH
+    // The same for the W nodes i0 + l of a chunk (node i0's per-bond values, partners j + l).
+    template <int D>
+    void dilatation_chunk(const Bonds& b, const Field<D>& y, int i0)
+    {
+        using detail::load_chunk;
+        detail::vchunk yi[3], so = {}, ss = {};
+        for (int d = 0; d < 3; ++d) yi[d] = load_chunk(y.c[d].data() + i0);
+        for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
+            const int j = b.partner[k];
+            detail::vchunk len2 = {};
+            for (int d = 0; d < 3; ++d) {
+                const detail::vchunk Y = load_chunk(y.c[d].data() + j) - yi[d];
+                len2 += Y * Y;
+            }
+            const double L = length[k];
+            const detail::vchunk xe = L * (detail::sqrt_chunk(len2) - L);  // x e [m^2]
+            so += w_i[k] * xe;
+            ss += s_i[k] * xe;
+        }
+        for (int l = 0; l < detail::chunk_width; ++l) set_dilatation(static_cast<std::size_t>(i0 + l), so[l], ss[l]);
+    }
+#endif
 };
 
 }  // namespace pd

@@ -9,11 +9,16 @@
 // reproduces W = (D^2/2) kappa_D s^2 exactly; `continuum` (default) is the published constant.
 // Damage: a broken bond carries no force (bond_loop.hpp) and PMB has no per-node constant, so a
 // damaged body is exactly the body built without the broken bonds (tests/test_damage_models.cpp).
+// Cost: nodes with translated families (stencil_runs.hpp: same |xi| and coef bond by bond) take
+// the chunk path of the bond loop, W nodes at a time (chunk_scalar). Change coef only through
+// scale_bonds, which finds the runs again.
 #pragma once
 #include "pd/bonds.hpp"
+#include "pd/chunk_simd.hpp"
 #include "pd/field.hpp"
 #include "pd/material.hpp"
 #include "pd/parallel.hpp"
+#include "pd/stencil_runs.hpp"
 
 #include <stdexcept>
 #include <vector>
@@ -50,6 +55,7 @@ struct PMB {
           coef(bonds.size()), length(bonds.length.data())
     {
         for (std::size_t k = 0; k < bonds.size(); ++k) coef[k] = c * bonds.omega[k] * bonds.volume[k] / bonds.length[k];
+        find_runs(bonds);
     }
 
     // Bond-wise micromodulus c_ij = factor[k] c (surface correction, models/surface_correction.hpp);
@@ -58,6 +64,7 @@ struct PMB {
     {
         if (factor.size() != coef.size()) throw std::invalid_argument("PMB::scale_bonds: one factor per bond expected");
         for (std::size_t k = 0; k < coef.size(); ++k) coef[k] *= factor[k];
+        if (bonds_ && bonds_->size() == coef.size()) find_runs(*bonds_);
     }
 
     // c omega V s / |Y| with s = (|Y| - |xi|)/|xi|: force on i is this times Y.
@@ -65,6 +72,16 @@ struct PMB {
     {
         return coef[k] * (ylen - length[k]) / ylen;
     }
+
+    // Chunk hooks of the bond loop (bond_loop.hpp): bond_scalar for the W nodes of a chunk.
+    StencilRuns runs;
+    const StencilRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
+#ifdef PD_CHUNK_WIDTH
+    detail::vchunk chunk_scalar(int, std::int64_t k, int, const detail::vchunk& ylen) const
+    {
+        return coef[k] * (ylen - length[k]) / ylen;
+    }
+#endif
 
     // Strain energy density W_i = 1/4 sum_j c omega s^2 |xi| V_j [J/m^3] (intact bonds).
     template <int D>
@@ -82,6 +99,16 @@ struct PMB {
             W[i] = sum;
         });
         return W;
+    }
+
+private:
+    const Bonds* bonds_ = nullptr;  // the bonds the model was built on (as `length`)
+    void find_runs(const Bonds& b)
+    {
+        bonds_ = &b;
+#ifdef PD_CHUNK_WIDTH
+        runs = find_stencil_runs(b, detail::chunk_width, {&b.length, &coef});
+#endif
     }
 };
 
