@@ -29,9 +29,10 @@
 // bond-loop order, K and sum omega xi V in the same pass as F once bonds can break; the i-end force
 // P_i K_i^-1 sum_j omega xi V_j is summed once per node (kernel node_force); the bond kernel reads
 // P_j K_j^-1 and F_j of node j (18 values per bond). 3D with AVX2/FMA (round 3 of issue 3): both
-// passes are vectorised within the bond where they touch node j (Kernel::family_force: the
-// partner matrices as 6 aligned column loads from `blocks`, then transposed for the rest across 4
-// bonds; deformation_sum: padded x and y), same lanes and order as the generic code (about 4.8x PMB).
+// passes are vectorised within the bond where they touch node j (correspondence_simd.hpp: the
+// partner matrices as 6 aligned column loads from `blocks`; padded x and y), same lanes and order
+// as the generic code. 3D undamaged with AVX2 or AVX-512 (round 4): nodes with translated families
+// (stencil_runs.hpp) take both passes W at a time (correspondence_chunks.hpp, `soa`).
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
@@ -40,15 +41,12 @@
 #include "pd/lattice.hpp"
 #include "pd/material.hpp"
 #include "pd/models/correspondence_chunks.hpp"
+#include "pd/models/correspondence_simd.hpp"
 #include "pd/models/pmb.hpp"
-#include "pd/stencil_runs.hpp"
 #include "pd/parallel.hpp"
+#include "pd/stencil_runs.hpp"
 
 #include <Eigen/Dense>
-#if defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-#define PD_CORRESPONDENCE_AVX2 1
-#endif
 
 #include <array>
 #include <cmath>
@@ -106,7 +104,7 @@ struct Correspondence {
     };
     std::vector<double, Aligned64> blocks;
     std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
-    static constexpr int BS = 24;     // doubles per node block
+    static constexpr int BS = detail::correspondence_block;  // doubles per node block (24)
     // Chunks of translated families (stencil_runs.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
     // the bond pass and the deformation sums take W nodes at once (correspondence_chunks.hpp), reading
     // A = P K^-1 and F from `soa` (18 arrays of nodes() doubles, written by point_pass).
@@ -329,110 +327,13 @@ struct Correspondence {
         }
 #endif
 #ifdef PD_CORRESPONDENCE_AVX2
-        // 4 x 4 transpose of the first 3 entries: r[b][d] -> out[d][b].
-        static void transpose3(const __m256d* r, __m256d* out)
-        {
-            const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
-            const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
-            out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
-            out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-            out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
-        }
-        // The whole f_i (bond_loop.hpp, family kernel), 3D: the same arithmetic as bond_force, bond
-        // by bond in the same lanes and order. The partner products A_j xi and (F_i + F_j) xi are
-        // taken within the bond (3 broadcast xi components times 3 column loads each), transposed,
-        // and the rest (Y, hourglass projection, division, sums) runs across 4 bonds. Out: also stores each
-        // bond's whole force (A_i xi omega V_j included) in out[d][k] (bond_loop.hpp); f_i is unchanged.
+        // The whole f_i (bond_loop.hpp, family kernel), 3D, vectorised within the bond
+        // (correspondence_simd.hpp); Out: also each bond's whole force in out[d][k].
         template <bool Damaged, bool Out = false>
             requires(D == 3)
         Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y, double* const* out = nullptr) const
         {
-            const std::int64_t kb = b.offset[i], ke = b.offset[i + 1];
-            const int* partner = b.partner.data();
-            const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
-            __m256d xi_[3], yi_[3], Fi[3], Ai[3], acc[2][3];
-            for (int d = 0; d < 3; ++d) {
-                Ai[d] = Out ? _mm256_load_pd(blk + BS * i + 8 * d) : _mm256_setzero_pd();
-                xi_[d] = _mm256_set1_pd(x[d][i]);
-                yi_[d] = _mm256_set1_pd(yc[d][i]);
-                Fi[d] = Hourglass ? _mm256_loadu_pd(blk + BS * i + 8 * d + 4) : _mm256_setzero_pd();
-                acc[0][d] = acc[1][d] = _mm256_setzero_pd();
-            }
-            std::int64_t k = kb;
-            for (; k + detail::lanes <= ke; k += detail::lanes)
-                for (int h = 0; h < 2; ++h) {
-                    const std::int64_t k0 = k + 4 * h;
-                    __m256d a[4], g[4], o[4], Ax[3], Gx[3], Yx[3], Ox[3];
-                    int jj[4];
-                    for (int q = 0; q < 4; ++q) {
-                        const int j = jj[q] = partner[k0 + q];
-                        const double* Bj = blk + BS * static_cast<std::size_t>(j);
-                        __m256d e[3];
-                        for (int d = 0; d < 3; ++d) e[d] = _mm256_sub_pd(_mm256_broadcast_sd(x[d] + j), xi_[d]);
-                        a[q] = _mm256_mul_pd(_mm256_load_pd(Bj), e[0]);
-                        a[q] = _mm256_fmadd_pd(_mm256_load_pd(Bj + 8), e[1], a[q]);
-                        a[q] = _mm256_fmadd_pd(_mm256_load_pd(Bj + 16), e[2], a[q]);
-                        if constexpr (Out)
-                            o[q] = _mm256_fmadd_pd(Ai[2], e[2], _mm256_fmadd_pd(Ai[1], e[1], _mm256_mul_pd(Ai[0], e[0])));
-                        if constexpr (Hourglass) {
-                            g[q] = _mm256_mul_pd(_mm256_add_pd(Fi[0], _mm256_load_pd(Bj + 4)), e[0]);
-                            g[q] = _mm256_fmadd_pd(_mm256_add_pd(Fi[1], _mm256_load_pd(Bj + 12)), e[1], g[q]);
-                            g[q] = _mm256_fmadd_pd(_mm256_add_pd(Fi[2], _mm256_load_pd(Bj + 20)), e[2], g[q]);
-                        }
-                    }
-                    transpose3(a, Ax);
-                    const __m256d w = _mm256_loadu_pd(wV + k0);
-                    __m256d f[3];
-                    for (int d = 0; d < 3; ++d) {
-                        Yx[d] = _mm256_sub_pd(_mm256_set_pd(yc[d][jj[3]], yc[d][jj[2]], yc[d][jj[1]], yc[d][jj[0]]), yi_[d]);
-                        f[d] = _mm256_mul_pd(w, Ax[d]);
-                    }
-                    if constexpr (Hourglass) {
-                        transpose3(g, Gx);
-                        const __m256d two = _mm256_set1_pd(2.0);
-                        __m256d proj = _mm256_mul_pd(_mm256_fmsub_pd(two, Yx[0], Gx[0]), Yx[0]);
-                        __m256d y2 = _mm256_mul_pd(Yx[0], Yx[0]);
-                        for (int d = 1; d < 3; ++d) {
-                            proj = _mm256_fmadd_pd(_mm256_fmsub_pd(two, Yx[d], Gx[d]), Yx[d], proj);
-                            y2 = _mm256_fmadd_pd(Yx[d], Yx[d], y2);
-                        }
-                        const __m256d den = _mm256_blendv_pd(_mm256_set1_pd(1.0), y2, _mm256_cmp_pd(y2, _mm256_setzero_pd(), _CMP_GT_OQ));
-                        const __m256d t = _mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(hg + k0), proj), den);
-                        for (int d = 0; d < 3; ++d) f[d] = _mm256_fmadd_pd(t, Yx[d], f[d]);
-                    }
-                    __m256d keep = _mm256_set1_pd(1.0);
-                    if constexpr (Damaged) {
-                        std::int32_t flags;
-                        std::memcpy(&flags, b.intact.data() + k0, 4);
-                        keep = _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(flags)));
-                    }
-                    if constexpr (Out) {
-                        transpose3(o, Ox);
-                        for (int d = 0; d < 3; ++d) _mm256_storeu_pd(out[d] + k0, _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], f[d]), keep));
-                    }
-                    if constexpr (Damaged)
-                        for (int d = 0; d < 3; ++d) f[d] = _mm256_mul_pd(f[d], keep);
-                    for (int d = 0; d < 3; ++d) acc[h][d] = _mm256_add_pd(acc[h][d], f[d]);
-                }
-            detail::LaneSum<3> sum;
-            for (int d = 0; d < 3; ++d) {
-                _mm256_storeu_pd(sum.s[d], acc[0][d]);
-                _mm256_storeu_pd(sum.s[d] + 4, acc[1][d]);
-            }
-            for (int l = 0; k < ke; ++k, ++l) {
-                const int j = partner[k];
-                Vec<D> Y;
-                for (int d = 0; d < 3; ++d) Y[d] = yc[d][j] - yc[d][i];
-                Vec<D> fk = bond_force(i, k, j, Y);
-                if constexpr (Damaged) fk *= static_cast<double>(b.intact[k]);
-                for (int d = 0; d < 3; ++d) sum.s[d][l] += fk[d];
-                if constexpr (Out) fk += static_cast<double>(b.intact[k]) * node_share(i, k, j);
-                if constexpr (Out) for (int d = 0; d < 3; ++d) out[d][k] = fk[d];
-            }
-            const Vec<D> fn = node_force(i);
-            Vec<D> r;
-            for (int d = 0; d < 3; ++d) r[d] = sum.total(d) + fn[d];
-            return r;
+            return detail::family_force_avx2<Hourglass, Damaged, Out>(*this, i, b, y, out);
         }
 #endif
     };
@@ -607,35 +508,14 @@ private:
     }
 
 #ifdef PD_CORRESPONDENCE_AVX2
-    // N = sum_j omega (y_j - y_i) (x) xi V_j of node i without damage (3D; family_sums<false, false, 1>
-    // with the same lanes, order and arithmetic): lane l takes bonds begin + l + 8 m in turn, and
-    // each bond adds (y_j - y_i) w xi_c to column c as one 4-wide FMA (xpad, ypad: 2 loads per bond).
+    // N = sum_j omega (y_j - y_i) (x) xi V_j of node i without damage (3D, correspondence_simd.hpp).
     Mat deformation_sum(const Bonds& b, std::size_t i) const
     {
-        const std::int64_t kb = b.offset[i], ke = b.offset[i + 1];
-        const int* partner = b.partner.data();
-        const __m256d xi_ = _mm256_load_pd(xpad.data() + 4 * i), yi_ = _mm256_load_pd(ypad.data() + 4 * i);
-        detail::LaneSum<DD> sum;
-        for (int l = 0; l < detail::lanes && kb + l < ke; ++l) {
-            __m256d acc[3] = {_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd()};
-            for (std::int64_t k = kb + l; k < ke; k += detail::lanes) {
-                const std::size_t j = static_cast<std::size_t>(partner[k]);
-                const __m256d we = _mm256_mul_pd(_mm256_set1_pd(wV[k]), _mm256_sub_pd(_mm256_load_pd(xpad.data() + 4 * j), xi_));
-                const __m256d dz = _mm256_sub_pd(_mm256_load_pd(ypad.data() + 4 * j), yi_);
-                acc[0] = _mm256_fmadd_pd(dz, _mm256_permute4x64_pd(we, 0x00), acc[0]);
-                acc[1] = _mm256_fmadd_pd(dz, _mm256_permute4x64_pd(we, 0x55), acc[1]);
-                acc[2] = _mm256_fmadd_pd(dz, _mm256_permute4x64_pd(we, 0xaa), acc[2]);
-            }
-            for (int c = 0; c < 3; ++c) {
-                alignas(32) double t[4];
-                _mm256_store_pd(t, acc[c]);
-                for (int a = 0; a < 3; ++a) sum.s[a + 3 * c][l] = t[a];
-            }
-        }
-        Mat N;
-        for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) N(a, c) = sum.total(a + 3 * c);
-        return N;
+        double N[DD];
+        detail::deformation_sum_avx2(b, i, xpad.data(), ypad.data(), wV.data(), N);
+        Mat M;
+        for (int e = 0; e < DD; ++e) M(e % D, e / D) = N[e];
+        return M;
     }
 #endif
 
