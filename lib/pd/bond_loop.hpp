@@ -33,7 +33,7 @@
 //   vchunk chunk_scalar(int i0, std::int64_t k, int j, const vchunk& ylen) const;  // ordinary
 //        // bond_scalar of bond k of node i0 (partner j) for the W lanes i0 + l (partners j + l)
 // or
-//   void chunk_force(int i0, const Bonds&, const Field<D>& y, Field<D>& f) const;  // f of i0 .. i0 + W - 1
+//   void chunk_force(int q, const Bonds&, const Field<D>& y, Field<D>& f) const;  // f of chunk q's W nodes
 // In undamaged scenes without per-bond output the bond pass then takes the chunks W nodes at a
 // time (node j's values as contiguous vectors, per-bond data as node i0's scalars) and the other
 // nodes with the per-node code; the split is fixed by the bonds, so results still do not depend on
@@ -202,18 +202,18 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     };
     // Chunks of translated families (stencil_runs.hpp), undamaged scenes only: W nodes per call.
     auto chunked = [&](const StencilRuns& runs, auto&& chunk) {
-        parallel_for(runs.chunk_start.size(), [&](std::size_t q) { chunk(runs.chunk_start[q]); });
+        parallel_for(runs.chunk_start.size(), [&](std::size_t q) { chunk(q); });
         parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
     };
     if constexpr (!Damaged && requires { model.chunks(bonds); model.chunk_force(0, bonds, y, f); }) {
         if (const StencilRuns* runs = model.chunks(bonds))
-            return chunked(*runs, [&](int i0) { model.chunk_force(i0, bonds, y, f); });
+            return chunked(*runs, [&](std::size_t q) { model.chunk_force(static_cast<int>(q), bonds, y, f); });
     }
 #ifdef PD_CHUNK_WIDTH
     if constexpr (!Damaged && is_ordinary<Model>() && requires(const vchunk& v) { model.chunks(bonds); model.chunk_scalar(0, std::int64_t{}, 0, v); }) {
         static_assert(!requires { model.node_force(std::size_t{}); }, "ordinary chunk kernels have no node term");
         if (const StencilRuns* runs = model.chunks(bonds))
-            return chunked(*runs, [&](int i0) { ordinary_chunk(model, bonds, i0, y, f); });
+            return chunked(*runs, [&](std::size_t q) { ordinary_chunk(model, bonds, runs->chunk_start[q], y, f); });
     }
 #endif
     parallel_for(bonds.nodes(), node);

@@ -30,6 +30,8 @@ struct StencilRuns {
     int width = 0;                  // W, nodes per chunk
     std::size_t nodes = 0, bonds = 0;  // sizes of the Bonds they were found on (a check for users)
     std::vector<int> chunk_start;   // first node i0 of each chunk (nodes i0 .. i0 + W - 1)
+    std::vector<int> chunk_run;     // run of each chunk, an index into run_first
+    std::vector<int> run_first;     // first node t of each run that has chunks (its family is the template)
     std::vector<int> rest;          // nodes in no chunk, ascending
     bool fits(const Bonds& b) const { return width > 0 && nodes == b.nodes() && bonds == b.size(); }
     std::size_t chunked_nodes() const { return chunk_start.size() * static_cast<std::size_t>(width); }
@@ -72,7 +74,11 @@ inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer
         std::size_t len = 1;
         while (t + len < n && detail::translates(b, t, t + len, per_bond, per_node, tol)) ++len;
         const std::size_t chunks = b.end(t) > b.begin(t) ? len / static_cast<std::size_t>(width) : 0;
-        for (std::size_t c = 0; c < chunks; ++c) runs.chunk_start.push_back(static_cast<int>(t + c * width));
+        if (chunks > 0) runs.run_first.push_back(static_cast<int>(t));
+        for (std::size_t c = 0; c < chunks; ++c) {
+            runs.chunk_start.push_back(static_cast<int>(t + c * width));
+            runs.chunk_run.push_back(static_cast<int>(runs.run_first.size()) - 1);
+        }
         for (std::size_t i = t + chunks * width; i < t + len; ++i) runs.rest.push_back(static_cast<int>(i));
         t += len;
     }

@@ -110,6 +110,12 @@ struct Correspondence {
     // A = P K^-1 and F from `soa` (18 arrays of nodes() doubles, written by point_pass).
     StencilRuns runs;
     std::vector<double> soa;
+#ifdef PD_CHUNK_WIDTH
+    detail::ChunkTemplates templates;
+    std::vector<double> kinv_soa;          // K^-1 as 9 arrays (chunks, Law::linear)
+    std::vector<std::uint8_t> regular;     // per chunk: every lane has K^-1 != 0
+    std::vector<std::uint8_t> block_read;  // per node: `blocks` is read by the per-node kernels
+#endif
 
     Correspondence() = default;
     Correspondence(const Params& p, const Body<D>& body, const Bonds& b)
@@ -141,10 +147,16 @@ struct Correspondence {
 #ifdef PD_CHUNK_WIDTH
             const std::initializer_list<const std::vector<double>*> xc{&x.c[0], &x.c[1], &x.c[2]};
             runs = c_hg != 0 ? find_stencil_runs(b, detail::chunk_width, {&wV, &hg}, xc) : find_stencil_runs(b, detail::chunk_width, {&wV}, xc);
-            if (!runs.chunk_start.empty()) soa.assign(18 * b.nodes(), 0.0);
+            if (!runs.chunk_start.empty()) {
+                soa.assign(18 * b.nodes(), 0.0);
+                templates = detail::chunk_templates(runs, b, x, wV, hg);
+            }
 #endif
         }
         shape_tensors(b);
+#ifdef PD_CHUNK_WIDTH
+        if (!soa.empty()) chunk_setup(b);
+#endif
     }
 
     Col xi(std::size_t i, int j) const
@@ -274,6 +286,9 @@ struct Correspondence {
         const double* blk;         // per node A and F, 4-padded columns (Correspondence::blocks; 3D)
         const StencilRuns* runs;   // chunks of translated families (3D, AVX2/AVX-512), or null
         const double* soa;         // A and F per node as 18 arrays (chunks only)
+#ifdef PD_CHUNK_WIDTH
+        const detail::ChunkTemplates* templates;
+#endif
         Vec<D> node_force(std::size_t i) const
         {
             Vec<D> f;
@@ -317,13 +332,14 @@ struct Correspondence {
 #ifdef PD_CHUNK_WIDTH
         // Chunk hook of the bond loop (bond_loop.hpp): f of nodes i0 .. i0 + W - 1, undamaged.
         const StencilRuns* chunks(const Bonds& b) const { return runs && runs->fits(b) ? runs : nullptr; }
-        void chunk_force(int i0, const Bonds& b, const Field<D>& y, Field<D>& f) const
+        void chunk_force(int q, const Bonds&, const Field<D>& y, Field<D>& f) const
             requires(D == 3)
         {
-            const detail::ChunkBonds t{b.offset.data(), b.partner.data(), {x[0], x[1], x[2]}, wV, hg};
+            const int run = runs->chunk_run[q];
+            const std::int64_t tb = templates->begin[run], s = templates->begin[run + 1] - tb;
             const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
             double* fc[3] = {f.c[0].data(), f.c[1].data(), f.c[2].data()};
-            detail::chunk_forces<Hourglass>(t, i0, yc, soa, runs->nodes, f_own, fc);
+            detail::chunk_forces<Hourglass>(templates->bond.data() + tb, s, runs->chunk_start[q], yc, soa, runs->nodes, f_own, fc);
         }
 #endif
 #ifdef PD_CORRESPONDENCE_AVX2
@@ -349,6 +365,9 @@ struct Correspondence {
         kn.blk = blocks.empty() ? nullptr : blocks.data();
         kn.runs = soa.empty() ? nullptr : &runs;
         kn.soa = soa.empty() ? nullptr : soa.data();
+#ifdef PD_CHUNK_WIDTH
+        kn.templates = &templates;
+#endif
         return kn;
     }
     // Calls pass(kernel) with the hourglass term compiled in or out (bond_loop.hpp).
@@ -446,12 +465,13 @@ private:
 #ifdef PD_CHUNK_WIDTH
         if constexpr (fast)
             if (!soa.empty() && runs.fits(b)) {  // chunks of W nodes, then the other nodes
-                const detail::ChunkBonds t{b.offset.data(), b.partner.data(), {x.c[0].data(), x.c[1].data(), x.c[2].data()}, wV.data(), nullptr};
                 const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
                 parallel_for(runs.chunk_start.size(), [&](std::size_t q) {
-                    const int i0 = runs.chunk_start[q];
+                    const int i0 = runs.chunk_start[q], run = runs.chunk_run[q];
+                    const std::int64_t tb = templates.begin[run];
                     double N[DD][detail::chunk_width];
-                    detail::chunk_deformation_sums(t, i0, yc, N);
+                    detail::chunk_deformation_sums(templates.bond.data() + tb, templates.begin[run + 1] - tb, i0, yc, N);
+                    if (par.law == Law::linear && regular[q]) return chunk_linear_stress(i0, N);
                     for (int l = 0; l < detail::chunk_width; ++l) {
                         Mat Nl;
                         for (int e = 0; e < DD; ++e) Nl(e % D, e / D) = N[e][l];
@@ -478,6 +498,45 @@ private:
         });
     }
 
+#ifdef PD_CHUNK_WIDTH
+    // Copies of K^-1 for the chunks, which chunks have no singular node, and which nodes' blocks
+    // the per-node kernels read (the other nodes and their partners).
+    void chunk_setup(const Bonds& b)
+    {
+        const std::size_t n = b.nodes();
+        kinv_soa.assign(DD * n, 0.0);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int e = 0; e < DD; ++e) kinv_soa[e * n + i] = Kinv[i](e % D, e / D);
+        regular.assign(runs.chunk_start.size(), 1);
+        for (std::size_t q = 0; q < regular.size(); ++q)
+            for (int l = 0; l < detail::chunk_width; ++l) regular[q] = regular[q] && !Kinv[runs.chunk_start[q] + l].isZero(0);
+        block_read.assign(n, 0);
+        for (int i : runs.rest) {
+            block_read[i] = 1;
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) block_read[b.partner[k]] = 1;
+        }
+    }
+    // Law::linear for the W nodes of a chunk, vectorised (correspondence_chunks.hpp), then the
+    // per-node copies.
+    void chunk_linear_stress(int i0, const double (*N)[detail::chunk_width])
+    {
+        constexpr int W = detail::chunk_width;
+        double Fl[DD][W], S[DD][W], A[DD][W];
+        const double* mxi[3] = {m_xi.c[0].data(), m_xi.c[1].data(), m_xi.c[2].data()};
+        double* fo[3] = {f_own.c[0].data(), f_own.c[1].data(), f_own.c[2].data()};
+        detail::chunk_linear_stress(i0, N, kinv_soa.data(), F.size(), mxi, lambda, par.material.G, Fl, S, A, soa.data(), fo);
+        for (int l = 0; l < W; ++l) {
+            const std::size_t i = static_cast<std::size_t>(i0 + l);
+            for (int e = 0; e < DD; ++e) {
+                F[i](e % D, e / D) = Fl[e][l];
+                sigma[i](e % D, e / D) = S[e][l];
+                PKinv[i](e % D, e / D) = A[e][l];
+            }
+            P[i] = sigma[i];
+            if (block_read[i]) write_block(i);
+        }
+    }
+#endif
     // F = N K^-1, the stress law, P K^-1 and the i-end force of node i (K^-1 already current).
     void node_stress(std::size_t i, const Mat& N)
     {

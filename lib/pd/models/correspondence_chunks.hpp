@@ -1,7 +1,8 @@
 // Correspondence kernels for chunks of translated families (3D, no damage; stencil_runs.hpp).
 // W nodes i0 .. i0 + W - 1 (the W lanes of one vector) whose families are translates of i0's: bond
 // r of lane l has partner j_r + l, so node j's values are W contiguous doubles, and xi_r, omega V_r
-// and the hourglass coefficient hg_r are node i0's, one scalar each per W bonds. The formulas are
+// and the hourglass coefficient hg_r are those of the run's template family (TemplateBond, one
+// cache line per bond, shared by all chunks of the run), one scalar each per W bonds. The formulas are
 // those of Correspondence (correspondence.hpp), summed bond by bond in family order per lane:
 //   deformation sums   N_l = sum_r (y_(j_r + l) - y_(i0 + l)) (x) omega V_r xi_r
 //   bond force         f_l = sum_r A_(j_r + l) omega V_r xi_r
@@ -11,34 +12,65 @@
 // soa[(a + 3 c) n + j] for A, soa[(9 + a + 3 c) n + j] for F); W = 8 (AVX-512) or 4 (AVX2),
 // chunk_simd.hpp.
 #pragma once
+#include "pd/bonds.hpp"
 #include "pd/chunk_simd.hpp"
+#include "pd/field.hpp"
+#include "pd/stencil_runs.hpp"
 
 #include <cstdint>
+#include <vector>
 
 #ifdef PD_CHUNK_WIDTH
 namespace pd::detail {
 
-// Node i0's bonds: the template of the chunk.
-struct ChunkBonds {
-    const std::int64_t* offset;
-    const int* partner;
-    const double* x[3];  // reference positions [m]
-    const double* wV;    // omega V_j per bond [m^3]
-    const double* hg;    // c_hg V_j / |xi| per bond [N/m^4]; unused without hourglass control
+// One bond of a run's template family (the family of the run's first node t, stencil_runs.hpp):
+// what every chunk of the run uses for its bond r (64 bytes, so a bond is one cache line).
+struct TemplateBond {
+    double wxi[3];        // omega V_j xi [m^4]
+    double xi[3];         // xi [m]
+    double hg;            // c_hg V_j / |xi| [N/m^4] (0 without hourglass control)
+    std::int64_t offset;  // j - t: bond r of node i0 + l has partner i0 + offset + l
 };
+// The templates of all runs: run q's bonds are bond[begin[q] .. begin[q + 1]).
+struct ChunkTemplates {
+    std::vector<std::int64_t> begin;
+    std::vector<TemplateBond> bond;
+};
+template <int D>
+ChunkTemplates chunk_templates(const StencilRuns& runs, const Bonds& b, const Field<D>& x, const std::vector<double>& wV,
+                               const std::vector<double>& hg)
+{
+    ChunkTemplates t;
+    t.begin.push_back(0);
+    for (int first : runs.run_first) {
+        for (std::int64_t k = b.begin(first); k < b.end(first); ++k) {
+            const int j = b.partner[k];
+            TemplateBond tb{};
+            for (int c = 0; c < D; ++c) {
+                tb.xi[c] = x.c[c][j] - x.c[c][first];
+                tb.wxi[c] = wV[k] * tb.xi[c];
+            }
+            tb.hg = hg.empty() ? 0.0 : hg[k];
+            tb.offset = j - first;
+            t.bond.push_back(tb);
+        }
+        t.begin.push_back(static_cast<std::int64_t>(t.bond.size()));
+    }
+    return t;
+}
 
-// N[a + 3 c][l] = sum_r (y_a(j_r + l) - y_a(i0 + l)) omega V_r xi_r,c  (F K of lane l).
-inline void chunk_deformation_sums(const ChunkBonds& t, int i0, const double* const y[3], double (*N)[PD_CHUNK_WIDTH])
+// N[a + 3 c][l] = sum_r (y_a(j_r + l) - y_a(i0 + l)) omega V_r xi_r,c  (F K of lane l); tb, s: the
+// template bonds of the chunk's run.
+inline void chunk_deformation_sums(const TemplateBond* tb, std::int64_t s, int i0, const double* const y[3],
+                                   double (*N)[PD_CHUNK_WIDTH])
 {
     const vchunk yi[3] = {load_chunk(y[0] + i0), load_chunk(y[1] + i0), load_chunk(y[2] + i0)};
     vchunk acc[9] = {};
-    for (std::int64_t k = t.offset[i0]; k < t.offset[i0 + 1]; ++k) {
-        const int j = t.partner[k];
-        double we[3];
-        for (int c = 0; c < 3; ++c) we[c] = t.wV[k] * (t.x[c][j] - t.x[c][i0]);
+    for (std::int64_t r = 0; r < s; ++r) {
+        const std::int64_t j = i0 + tb[r].offset;
         for (int a = 0; a < 3; ++a) {
             const vchunk dz = load_chunk(y[a] + j) - yi[a];
-            for (int c = 0; c < 3; ++c) acc[a + 3 * c] += dz * we[c];
+            for (int c = 0; c < 3; ++c) acc[a + 3 * c] += dz * tb[r].wxi[c];
         }
     }
     for (int e = 0; e < 9; ++e) store_chunk(N[e], acc[e]);
@@ -46,38 +78,67 @@ inline void chunk_deformation_sums(const ChunkBonds& t, int i0, const double* co
 
 // f_a(i0 + l) for the W lanes [N/m^3]: the bond sums above plus f_own.
 template <bool Hourglass>
-inline void chunk_forces(const ChunkBonds& t, int i0, const double* const y[3], const double* soa, std::size_t n,
-                         const double* const f_own[3], double* const f[3])
+inline void chunk_forces(const TemplateBond* tb, std::int64_t s, int i0, const double* const y[3], const double* soa,
+                         std::size_t n, const double* const f_own[3], double* const f[3])
 {
     const vchunk yi[3] = {load_chunk(y[0] + i0), load_chunk(y[1] + i0), load_chunk(y[2] + i0)};
     vchunk Fi[9];
     if constexpr (Hourglass)
         for (int e = 0; e < 9; ++e) Fi[e] = load_chunk(soa + (9 + e) * n + i0);
     vchunk acc[3] = {};
-    for (std::int64_t k = t.offset[i0]; k < t.offset[i0 + 1]; ++k) {
-        const int j = t.partner[k];
-        double xi[3], we[3];
-        for (int c = 0; c < 3; ++c) {
-            xi[c] = t.x[c][j] - t.x[c][i0];
-            we[c] = t.wV[k] * xi[c];
-        }
+    for (std::int64_t r = 0; r < s; ++r) {
+        const std::int64_t j = i0 + tb[r].offset;
         for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) acc[a] += load_chunk(soa + (a + 3 * c) * n + j) * we[c];
+            for (int c = 0; c < 3; ++c) acc[a] += load_chunk(soa + (a + 3 * c) * n + j) * tb[r].wxi[c];
         if constexpr (Hourglass) {
             vchunk Y[3], y2 = {}, gY = {};
             for (int a = 0; a < 3; ++a) {
                 Y[a] = load_chunk(y[a] + j) - yi[a];
                 vchunk g = {};
-                for (int c = 0; c < 3; ++c) g += (Fi[a + 3 * c] + load_chunk(soa + (9 + a + 3 * c) * n + j)) * xi[c];
+                for (int c = 0; c < 3; ++c) g += (Fi[a + 3 * c] + load_chunk(soa + (9 + a + 3 * c) * n + j)) * tb[r].xi[c];
                 y2 += Y[a] * Y[a];
                 gY += g * Y[a];
             }
             const vchunk den = y2 > vchunk{} ? y2 : splat(1.0);  // |Y| = 0 (collapsed bond): no hourglass force
-            const vchunk s = t.hg[k] * (2.0 * y2 - gY) / den;
-            for (int a = 0; a < 3; ++a) acc[a] += s * Y[a];
+            const vchunk t = tb[r].hg * (2.0 * y2 - gY) / den;
+            for (int a = 0; a < 3; ++a) acc[a] += t * Y[a];
         }
     }
     for (int a = 0; a < 3; ++a) store_chunk(f[a] + i0, acc[a] + load_chunk(f_own[a] + i0));
+}
+
+// Law::linear for the W lanes of a chunk, from the deformation sums N[9][W] (column-major entries):
+//   F = N K^-1,  eps = sym(F) - I,  sigma = lambda tr(eps) I + 2 G eps,  A = sigma K^-1,  f_own = A m_xi,
+// with K^-1 and m_xi of the lanes from structure-of-arrays copies (entry e of node i at kinv[e n + i],
+// m_xi.c[c][i]). Out: F, sigma and A as [9][W], A and F into soa, f_own into its field arrays.
+inline void chunk_linear_stress(int i0, const double (*N)[PD_CHUNK_WIDTH], const double* kinv, std::size_t n,
+                                const double* const mxi[3], double lambda, double G, double (*F)[PD_CHUNK_WIDTH],
+                                double (*S)[PD_CHUNK_WIDTH], double (*A)[PD_CHUNK_WIDTH], double* soa, double* const f_own[3])
+{
+    vchunk Ki[9], Nv[9], Fv[9], Sv[9];
+    for (int e = 0; e < 9; ++e) {
+        Ki[e] = load_chunk(kinv + e * n + i0);
+        Nv[e] = load_chunk(N[e]);
+    }
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) Fv[a + 3 * c] = Nv[a] * Ki[3 * c] + Nv[a + 3] * Ki[1 + 3 * c] + Nv[a + 6] * Ki[2 + 3 * c];
+    const vchunk tr = Fv[0] + Fv[4] + Fv[8] - 3.0;
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) Sv[a + 3 * c] = G * (Fv[a + 3 * c] + Fv[c + 3 * a]) + (a == c ? lambda * tr - 2 * G : vchunk{});
+    vchunk fo[3] = {};
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) {
+            const vchunk Av = Sv[a] * Ki[3 * c] + Sv[a + 3] * Ki[1 + 3 * c] + Sv[a + 6] * Ki[2 + 3 * c];
+            fo[a] += Av * load_chunk(mxi[c] + i0);
+            store_chunk(A[a + 3 * c], Av);
+            store_chunk(soa + (a + 3 * c) * n + i0, Av);
+        }
+    for (int e = 0; e < 9; ++e) {
+        store_chunk(F[e], Fv[e]);
+        store_chunk(S[e], Sv[e]);
+        store_chunk(soa + (9 + e) * n + i0, Fv[e]);
+    }
+    for (int a = 0; a < 3; ++a) store_chunk(f_own[a] + i0, fo[a]);
 }
 
 }  // namespace pd::detail
