@@ -90,6 +90,21 @@ struct LPS {
 #endif
     }
 
+    // omega V_j of bond k times factor[k] (surface correction, models/surface_correction.hpp), in
+    // the dilatation, the force and the energy; m_i, p_coef and alpha are kept. factor must be
+    // symmetric (factor[k] == factor[reverse[k]]) for the pair forces to balance. With m_i kept,
+    // sum_j G omega e_d |xi| V != 0, so, as with WeightedVolume::reference, the force is not the
+    // exact gradient of the reported W (recomputing m_i with the scaled weights would keep it
+    // variational, but cancels most of the correction: bar_stiffness.md).
+    void scale_bonds(const std::vector<double>& factor)
+    {
+        if (factor.size() != wV.size()) throw std::invalid_argument("LPS::scale_bonds: one factor per bond expected");
+        for (std::size_t k = 0; k < wV.size(); ++k) wV[k] *= factor[k];
+#ifdef PD_CHUNK_WIDTH
+        runs = find_stencil_runs(*bonds, detail::chunk_width, {&bonds->length, &wV});
+#endif
+    }
+
     // After bonds broke: with the intact rule, m_i over the intact bonds (4.8), p_coef, alpha and
     // a position-based SCF_i rebuilt; with the reference rule nothing changes (see header).
     void recompute(const Bonds& b)
@@ -187,7 +202,7 @@ struct LPS {
                 if (b.has_damage() && !b.intact[k]) continue;
                 const double L = b.length[k];
                 const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L / dim;
-                dev += b.omega[k] * ed * ed * b.volume[k];
+                dev += wV[k] * ed * ed;
             }
             W[i] = 0.5 * kappa * theta[i] * theta[i] + 0.5 * alpha[i] * dev;
         });

@@ -16,9 +16,17 @@
 //   uniaxial strain (W = 1/4 c zeta^2 integral omega |xi| n_k^4 dV, c M1 = 2 D^2 kappa_D), with the
 //   spherical averages <n_k^4> = 1/5 (3D), 3/8 (2D), 1 (1D). 3D: 9/10 K zeta^2 = (lambda + 2G)/2
 //   zeta^2 with nu = 1/4. It also absorbs the lattice quadrature error of interior nodes.
+// LPS (same steps 1-5, the LPS energy density at the probe after its point pass): step 6 scales
+//   omega V_j of bond k by G_ij (LPS::scale_bonds), in the dilatation and the deviatoric part alike,
+//   with m_i kept (pair forces balance; the force is not the exact gradient of W, see
+//   LPS::scale_bonds). Reference::classical only, W_k_inf = (kappa_D/2 + G (1 - 1/D)) zeta^2
+//   (uniaxial strain: 3D (K + 4G/3)/2 zeta^2; 2D (kappa_2D + G)/2 zeta^2; 1D E/2 zeta^2). Unlike the
+//   uncorrected LPS, the corrected one no longer gives theta = 3 eps exactly at surface nodes under
+//   isotropic expansion (G_ij != 1 there).
 // Nodes with W_k(i) = 0 (no bond stretched by the probe, e.g. an isolated node) keep g_k = 1.
 // Compute the factors on the unscaled model, before any bond breaks (broken bonds are skipped).
 #pragma once
+#include "pd/models/lps.hpp"
 #include "pd/models/pmb.hpp"
 
 #include <array>
@@ -113,6 +121,37 @@ std::array<double, D> full_family_energy(const PMB& pmb, const Body<D>& body, co
 
 }  // namespace detail
 
+namespace detail {
+
+// Steps 1 and 3-5 from the reference energies W_inf and the model's energy density at a probe,
+// energy(y) -> W per node [J/m^3].
+template <int D, class Energy>
+void energy_method_factors(SurfaceFactors<D>& out, const Body<D>& body, const Bonds& bonds, double zeta, Energy&& energy)
+{
+    for (int a = 0; a < D; ++a) {
+        out.W[a] = energy(uniaxial_probe(body, a, zeta));
+        out.g[a].resize(body.size());
+        for (std::size_t i = 0; i < body.size(); ++i)
+            out.g[a][i] = out.W[a][i] > 0 ? out.W_inf[a] / out.W[a][i] : 1.0;  // g_k = W_inf / W_k
+    }
+    out.G.resize(bonds.size());  // bond factors, symmetric in i and j term by term
+    parallel_for(bonds.nodes(), [&](std::size_t i) {
+        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
+            const int j = bonds.partner[k];
+            const Vec<D> xi = body.x[j] - body.x[i];
+            const double L2 = dot(xi, xi);
+            double sum = 0;
+            for (int a = 0; a < D; ++a) {
+                const double Ga = 0.5 * (out.g[a][i] + out.g[a][j]);  // G_k,ij
+                sum += xi[a] * xi[a] / L2 / (Ga * Ga);                  // (n_k / G_k,ij)^2
+            }
+            out.G[k] = 1.0 / std::sqrt(sum);  // G_ij = [sum_k (n_k / G_k,ij)^2]^(-1/2)
+        }
+    });
+}
+
+}  // namespace detail
+
 template <int D>
 SurfaceFactors<D> surface_correction(const PMB& pmb, const Body<D>& body, const Bonds& bonds,
                                      const SurfaceCorrectionOptions& opt = {})
@@ -129,45 +168,44 @@ SurfaceFactors<D> surface_correction(const PMB& pmb, const Body<D>& body, const 
         const double n4 = D == 3 ? 1.0 / 5 : D == 2 ? 3.0 / 8 : 1.0;  // spherical average of n_k^4
         for (int a = 0; a < D; ++a) out.W_inf[a] = 0.5 * D * D * opt.kappa * n4 * opt.zeta * opt.zeta;
     }
-    // Steps 1 and 3: probe energies and node factors.
-    for (int a = 0; a < D; ++a) {
-        out.W[a] = pmb.energy_density(bonds, detail::uniaxial_probe(body, a, opt.zeta));
-        out.g[a].resize(body.size());
-        for (std::size_t i = 0; i < body.size(); ++i)
-            out.g[a][i] = out.W[a][i] > 0 ? out.W_inf[a] / out.W[a][i] : 1.0;  // g_k = W_inf / W_k
-    }
-    // Steps 4 and 5: bond factors, symmetric in i and j term by term.
-    out.G.resize(bonds.size());
-    parallel_for(bonds.nodes(), [&](std::size_t i) {
-        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
-            const int j = bonds.partner[k];
-            const Vec<D> xi = body.x[j] - body.x[i];
-            const double L2 = dot(xi, xi);
-            double sum = 0;
-            for (int a = 0; a < D; ++a) {
-                const double Ga = 0.5 * (out.g[a][i] + out.g[a][j]);  // G_k,ij
-                sum += xi[a] * xi[a] / L2 / (Ga * Ga);                  // (n_k / G_k,ij)^2
-            }
-            out.G[k] = 1.0 / std::sqrt(sum);  // G_ij = [sum_k (n_k / G_k,ij)^2]^(-1/2)
-        }
+    detail::energy_method_factors(out, body, bonds, opt.zeta, [&](const Field<D>& y) { return pmb.energy_density(bonds, y); });
+    return out;
+}
+
+// LPS (header): Reference::classical with the model's own kappa_D and G (opt.kappa is not used).
+template <int D>
+SurfaceFactors<D> surface_correction(const LPS& lps, const Body<D>& body, const Bonds& bonds,
+                                     const SurfaceCorrectionOptions& opt = {})
+{
+    if (!(opt.zeta > 0)) throw std::invalid_argument("surface correction: zeta must be > 0");
+    if (opt.reference != SurfaceCorrectionOptions::Reference::classical)
+        throw std::invalid_argument("surface correction: LPS takes Reference::classical only");
+    if (lps.wV.size() != bonds.size() || body.size() != bonds.nodes() || lps.dim != D)
+        throw std::invalid_argument("surface correction: model, body and bonds do not match");
+    SurfaceFactors<D> out;
+    for (int a = 0; a < D; ++a) out.W_inf[a] = (0.5 * lps.kappa + lps.G * (1.0 - 1.0 / D)) * opt.zeta * opt.zeta;
+    LPS probe = lps;  // the point pass writes theta
+    detail::energy_method_factors(out, body, bonds, opt.zeta, [&](const Field<D>& y) {
+        probe.point_pass(bonds, y);
+        return probe.energy_density(bonds, y);
     });
     return out;
 }
 
-template <int D>
-std::vector<double> surface_correction_factors(const PMB& pmb, const Body<D>& body, const Bonds& bonds,
+template <int D, class Model>
+std::vector<double> surface_correction_factors(const Model& model, const Body<D>& body, const Bonds& bonds,
                                                const SurfaceCorrectionOptions& opt = {})
 {
-    return surface_correction(pmb, body, bonds, opt).G;
+    return surface_correction(model, body, bonds, opt).G;
 }
 
-// Step 6 for a scene: scales the micromodulus per bond when `method` is energy; none leaves it.
-template <int D>
-void apply_surface_correction(PMB& pmb, const Body<D>& body, const Bonds& bonds, SurfaceCorrectionMethod method,
+// Step 6 for a scene (PMB or LPS): scales the bonds when `method` is energy; none leaves the model.
+template <int D, class Model>
+void apply_surface_correction(Model& model, const Body<D>& body, const Bonds& bonds, SurfaceCorrectionMethod method,
                               const SurfaceCorrectionOptions& opt = {})
 {
     if (method == SurfaceCorrectionMethod::none) return;
-    pmb.scale_bonds(surface_correction_factors(pmb, body, bonds, opt));
+    model.scale_bonds(surface_correction_factors(model, body, bonds, opt));
 }
 
 }  // namespace pd
