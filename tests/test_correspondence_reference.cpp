@@ -162,3 +162,25 @@ TEST(CorrespondenceReference, ChunkedForceEqualsTextbookFormula)
 #endif
     expect_textbook_force(body, b, random_deformation(body, 23));
 }
+
+// The bond pass alone after damage bookkeeping is switched on (bond_loop.hpp bond_forces: the state
+// of the last point pass): the per-node kernels then read every node's block, also those the chunk
+// path wrote. With every bond intact the force must be the undamaged one.
+TEST(CorrespondenceReference, BondPassAfterEnablingDamageUsesTheChunkedPointPass)
+{
+    auto body = box<3>({{0, 0, 0}}, {{24 * dx, 5 * dx, 4 * dx}}, dx);
+    Bonds b = build_bonds(body, m_ratio * dx);
+    Correspondence<3> model({Elastic::from_E_nu(200e9, 0.3), Correspondence<3>::Law::linear, 0.02}, body, b);
+    const Field<3> y = random_deformation(body, 29);
+    Field<3> f, g;
+    internal_force(model, b, y, f);  // undamaged: chunks
+    b.enable_damage();
+    bond_forces(model, b, y, g);     // damaged path, no point pass
+    double diff = 0, scale = 0;
+    for (int d = 0; d < 3; ++d)
+        for (std::size_t i = 0; i < body.size(); ++i) {
+            diff = std::max(diff, std::abs(f.c[d][i] - g.c[d][i]));
+            scale = std::max(scale, std::abs(f.c[d][i]));
+        }
+    EXPECT_LT(diff, 1e-12 * scale);  // round-off of the two summation orders
+}

@@ -145,3 +145,39 @@ TEST(StencilRuns, LPSAndPALSChunkedForceEqualsPerNodeCode)
     const Bonds b2 = build_bonds(plate, 3.05 * dx);
     expect_chunked_equals_per_node<LPS>(plate, b2, [&](const Bonds& bb) { return LPS({.material = mat, .dim = 2}, bb); }, chunked_nodes(5, 34));
 }
+
+// Bond factors that break the translation (scale_bonds: surface correction, random modulus) must
+// refresh the runs: with stale runs a chunk would apply its first node's coefficients to all lanes.
+// A copy of the bonds is not the object the runs were found on: no chunks, same forces.
+TEST(StencilRuns, ScaledBondsAndCopiedBondsKeepTheForces)
+{
+    auto body = box<3>({{0, 0, 0}}, {{24 * dx, 4 * dx, 3 * dx}}, dx);
+    const Bonds b = build_bonds(body, 3.05 * dx);
+    std::vector<double> factor(b.size());
+    for (std::size_t i = 0; i < b.nodes(); ++i)
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+            const int j = b.partner[k];
+            factor[k] = 1 + 0.2 * std::sin(0.7 * std::min<int>(i, j) + 1.3 * std::max<int>(i, j));  // symmetric in i, j
+        }
+    const Field<3> y = random_positions(body, 13);
+    Bonds plain = b;
+    plain.enable_damage();
+    auto compare = [&](auto model, auto per_node) {
+        const std::size_t before = model.runs.chunked_nodes();
+        model.scale_bonds(factor);
+        per_node.scale_bonds(factor);
+        EXPECT_LT(model.runs.chunked_nodes(), before + 1);  // refreshed: a random factor leaves few translates
+        Field<3> f, g, h;
+        internal_force(model, b, y, f);
+        internal_force(per_node, plain, y, g);
+        EXPECT_LT(relative_difference(f, g), 1e-12);
+        const Bonds copy = b;  // same content, another object: the runs do not fit it
+        EXPECT_FALSE(model.runs.fits(copy));
+        internal_force(model, copy, y, h);
+        EXPECT_LT(relative_difference(h, g), 1e-12);
+    };
+    const PMB::Params pp{Elastic::from_E_nu(100e9, 0.25)};
+    compare(PMB(pp, Influence{}, b), PMB(pp, Influence{}, plain));
+    const Elastic mat = Elastic::from_E_nu(100e9, 0.33);
+    compare(LPS({.material = mat, .dim = 3}, b), LPS({.material = mat, .dim = 3}, plain));
+}

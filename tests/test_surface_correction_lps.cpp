@@ -67,7 +67,7 @@ TEST(LPSSurfaceCorrection, EnergyAtEveryNodeApproachesClassicalUniaxialStrain)
     const double after = worst_energy_error(corrected, body, b, opt.zeta, W_ref);
     std::printf("max |W/W_ref - 1|: %.3f before, %.3f after the correction\n", before, after);
     EXPECT_GT(before, 0.2);      // truncated families are far off (measured 0.33)
-    EXPECT_LT(after, before);    // measured 0.27: G_ij averages both ends and mixes directions, not exact
+    EXPECT_LT(after, 0.9 * before);  // measured 0.27: G_ij averages both ends and mixes directions, not exact
 }
 
 // Corrected model under a random deformation: sum_i f_i V_i = 0 (pair forces balance, G symmetric).

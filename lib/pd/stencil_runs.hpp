@@ -29,11 +29,15 @@ namespace pd {
 struct StencilRuns {
     int width = 0;                  // W, nodes per chunk
     std::size_t nodes = 0, bonds = 0;  // sizes of the Bonds they were found on (a check for users)
+    const int* partner_data = nullptr;  // and its partner array: runs fit only the very same Bonds
     std::vector<int> chunk_start;   // first node i0 of each chunk (nodes i0 .. i0 + W - 1)
     std::vector<int> chunk_run;     // run of each chunk, an index into run_first
     std::vector<int> run_first;     // first node t of each run that has chunks (its family is the template)
     std::vector<int> rest;          // nodes in no chunk, ascending
-    bool fits(const Bonds& b) const { return width > 0 && nodes == b.nodes() && bonds == b.size(); }
+    bool fits(const Bonds& b) const
+    {
+        return width > 0 && nodes == b.nodes() && bonds == b.size() && partner_data == b.partner.data();
+    }
     std::size_t chunked_nodes() const { return chunk_start.size() * static_cast<std::size_t>(width); }
 };
 
@@ -69,6 +73,7 @@ inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer
     runs.width = width;
     runs.nodes = b.nodes();
     runs.bonds = b.size();
+    runs.partner_data = b.partner.data();
     const std::size_t n = b.nodes();
     for (std::size_t t = 0; t < n;) {
         std::size_t len = 1;

@@ -114,7 +114,6 @@ struct Correspondence {
     detail::ChunkTemplates templates;
     std::vector<double> kinv_soa;          // K^-1 as 9 arrays (chunks, Law::linear)
     std::vector<std::uint8_t> regular;     // per chunk: every lane has K^-1 != 0
-    std::vector<std::uint8_t> block_read;  // per node: `blocks` is read by the per-node kernels
 #endif
 
     Correspondence() = default;
@@ -499,8 +498,7 @@ private:
     }
 
 #ifdef PD_CHUNK_WIDTH
-    // Copies of K^-1 for the chunks, which chunks have no singular node, and which nodes' blocks
-    // the per-node kernels read (the other nodes and their partners).
+    // Copies of K^-1 for the chunks, and which chunks have no singular node.
     void chunk_setup(const Bonds& b)
     {
         const std::size_t n = b.nodes();
@@ -510,11 +508,6 @@ private:
         regular.assign(runs.chunk_start.size(), 1);
         for (std::size_t q = 0; q < regular.size(); ++q)
             for (int l = 0; l < detail::chunk_width; ++l) regular[q] = regular[q] && !Kinv[runs.chunk_start[q] + l].isZero(0);
-        block_read.assign(n, 0);
-        for (int i : runs.rest) {
-            block_read[i] = 1;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) block_read[b.partner[k]] = 1;
-        }
     }
     // Law::linear for the W nodes of a chunk, vectorised (correspondence_chunks.hpp), then the
     // per-node copies.
@@ -533,7 +526,7 @@ private:
                 PKinv[i](e % D, e / D) = A[e][l];
             }
             P[i] = sigma[i];
-            if (block_read[i]) write_block(i);
+            write_block(i);  // every node: a later bond pass on damaged bonds reads any node's block
         }
     }
 #endif

@@ -25,7 +25,7 @@ namespace pd::detail {
 
 // One bond of a run's template family (the family of the run's first node t, stencil_runs.hpp):
 // what every chunk of the run uses for its bond r (64 bytes, so a bond is one cache line).
-struct TemplateBond {
+struct alignas(64) TemplateBond {
     double wxi[3];        // omega V_j xi [m^4]
     double xi[3];         // xi [m]
     double hg;            // c_hg V_j / |xi| [N/m^4] (0 without hourglass control)

@@ -65,6 +65,7 @@ struct PMB {
         if (factor.size() != coef.size()) throw std::invalid_argument("PMB::scale_bonds: one factor per bond expected");
         for (std::size_t k = 0; k < coef.size(); ++k) coef[k] *= factor[k];
         if (bonds_ && bonds_->size() == coef.size()) find_runs(*bonds_);
+        else runs = {};  // bonds unknown: no chunks rather than stale ones
     }
 
     // c omega V s / |Y| with s = (|Y| - |xi|)/|xi|: force on i is this times Y.
