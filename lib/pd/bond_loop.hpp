@@ -13,6 +13,7 @@
 // The choice is made at compile time (if constexpr): ordinary models compile the same loop as before.
 // Kernels: a model may hand the bond pass a separate kernel object instead of itself, by supplying
 //   template <class Pass> void with_kernel(Pass&& pass) const;   // calls pass(kernel) exactly once
+// (or with_kernel(pass, bonds), when the kernel's set-up depends on the bonds of the pass)
 // where the kernel has the members above (ordinary flag, bond_scalar or bond_force). The model picks
 // at run time among kernels specialised at compile time, so a switched-off term costs no branch in
 // the hot loop (correspondence: hourglass control on or off), and a kernel that holds raw pointers
@@ -235,7 +236,8 @@ void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Fiel
         else
             detail::bond_pass<false, false>(kernel, bonds, y, f);
     };
-    if constexpr (requires { model.with_kernel(pass); }) model.with_kernel(pass);
+    if constexpr (requires { model.with_kernel(pass, bonds); }) model.with_kernel(pass, bonds);
+    else if constexpr (requires { model.with_kernel(pass); }) model.with_kernel(pass);
     else pass(model);
 }
 

@@ -102,7 +102,12 @@ struct Correspondence {
         void deallocate(double* p, std::size_t) { ::operator delete(p, std::align_val_t{64}); }
         friend bool operator==(Aligned64, Aligned64) { return true; }
     };
-    std::vector<double, Aligned64> blocks;
+    // The chunk path writes blocks only where the per-node kernels of that pass read them
+    // (block_read); a bond pass that reads all (damaged bonds, or bonds the runs do not fit)
+    // completes them first (with_kernel).
+    mutable std::vector<double, Aligned64> blocks;
+    mutable bool blocks_partial = false;
+    std::vector<std::uint8_t> block_read;  // per node: read by the per-node kernels of an undamaged pass
     std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
     static constexpr int BS = detail::correspondence_block;  // doubles per node block (24)
     // Chunks of translated families (stencil_runs.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
@@ -369,10 +374,15 @@ struct Correspondence {
 #endif
         return kn;
     }
-    // Calls pass(kernel) with the hourglass term compiled in or out (bond_loop.hpp).
+    // Calls pass(kernel) with the hourglass term compiled in or out (bond_loop.hpp), after
+    // completing the blocks when this pass's per-node kernels read every node.
     template <class Pass>
-    void with_kernel(Pass&& pass) const
+    void with_kernel(Pass&& pass, const Bonds& b) const
     {
+        if (blocks_partial && (b.has_damage() || !runs.fits(b))) {
+            parallel_for(F.size(), [&](std::size_t i) { write_node_block(i); });
+            blocks_partial = false;
+        }
         if (c_hg != 0) pass(kernel<true>());
         else pass(kernel<false>());
     }
@@ -481,9 +491,11 @@ private:
                     const auto i = static_cast<std::size_t>(runs.rest[q]);
                     node_stress(i, this->deformation_sum(b, i));
                 });
+                blocks_partial = true;
                 return;
             }
 #endif
+        blocks_partial = false;  // node_stress below writes every block
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
@@ -498,13 +510,19 @@ private:
     }
 
 #ifdef PD_CHUNK_WIDTH
-    // Copies of K^-1 for the chunks, and which chunks have no singular node.
+    // Copies of K^-1 for the chunks, which chunks have no singular node, and which nodes' blocks
+    // the per-node kernels of an undamaged pass read (the nodes outside chunks and their partners).
     void chunk_setup(const Bonds& b)
     {
         const std::size_t n = b.nodes();
         kinv_soa.assign(DD * n, 0.0);
         for (std::size_t i = 0; i < n; ++i)
             for (int e = 0; e < DD; ++e) kinv_soa[e * n + i] = Kinv[i](e % D, e / D);
+        block_read.assign(n, 0);
+        for (int i : runs.rest) {
+            block_read[i] = 1;
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) block_read[b.partner[k]] = 1;
+        }
         regular.assign(runs.chunk_start.size(), 1);
         for (std::size_t q = 0; q < regular.size(); ++q)
             for (int l = 0; l < detail::chunk_width; ++l) regular[q] = regular[q] && !Kinv[runs.chunk_start[q] + l].isZero(0);
@@ -526,7 +544,7 @@ private:
                 PKinv[i](e % D, e / D) = A[e][l];
             }
             P[i] = sigma[i];
-            write_block(i);  // every node: a later bond pass on damaged bonds reads any node's block
+            if (block_read[i]) write_node_block(i);
         }
     }
 #endif
@@ -581,6 +599,10 @@ private:
                 soa[(DD + e) * n + i] = F[i](e % D, e / D);
             }
         }
+        write_node_block(i);
+    }
+    void write_node_block(std::size_t i) const
+    {
         if constexpr (D == 3) {
             double* B = blocks.data() + BS * i;
             for (int c = 0; c < 3; ++c)

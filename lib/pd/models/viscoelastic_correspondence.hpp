@@ -93,7 +93,7 @@ public:
     }
 
     template <class Pass>
-    void with_kernel(Pass&& pass) const { model.with_kernel(pass); }
+    void with_kernel(Pass&& pass, const Bonds& b) const { model.with_kernel(pass, b); }
     Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }
     template <int D>
     std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const { return model.energy_density(b, y); }
