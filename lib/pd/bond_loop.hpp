@@ -202,19 +202,15 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
         }
     };
     // Chunks of translated families (stencil_runs.hpp), undamaged scenes only: W nodes per call.
-    auto chunked = [&](const StencilRuns& runs, auto&& chunk) {
-        parallel_for(runs.chunk_start.size(), [&](std::size_t q) { chunk(q); });
-        parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
-    };
     if constexpr (!Damaged && requires { model.chunks(bonds); model.chunk_force(0, bonds, y, f); }) {
         if (const StencilRuns* runs = model.chunks(bonds))
-            return chunked(*runs, [&](std::size_t q) { model.chunk_force(static_cast<int>(q), bonds, y, f); });
+            if (for_chunks_then_rest(*runs, bonds, [&](std::size_t q) { model.chunk_force(static_cast<int>(q), bonds, y, f); }, node)) return;
     }
 #ifdef PD_CHUNK_WIDTH
     if constexpr (!Damaged && is_ordinary<Model>() && requires(const vchunk& v) { model.chunks(bonds); model.chunk_scalar(0, std::int64_t{}, 0, v); }) {
         static_assert(!requires { model.node_force(std::size_t{}); }, "ordinary chunk kernels have no node term");
         if (const StencilRuns* runs = model.chunks(bonds))
-            return chunked(*runs, [&](std::size_t q) { ordinary_chunk(model, bonds, runs->chunk_start[q], y, f); });
+            if (for_chunks_then_rest(*runs, bonds, [&](std::size_t q) { ordinary_chunk(model, bonds, runs->chunk_start[q], y, f); }, node)) return;
     }
 #endif
     parallel_for(bonds.nodes(), node);

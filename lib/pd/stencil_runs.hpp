@@ -18,6 +18,7 @@
 // bonds.has_damage() is false.
 #pragma once
 #include "pd/bonds.hpp"
+#include "pd/parallel.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -65,6 +66,17 @@ inline bool translates(const Bonds& b, std::size_t t, std::size_t i, std::initia
 }
 
 }  // namespace detail
+
+// The two loops of a chunked pass: chunk(q) for every chunk q, then node(i) for every node in no
+// chunk. Returns false, calling nothing, when the runs do not fit these bonds or have no chunk.
+template <class Chunk, class Node>
+bool for_chunks_then_rest(const StencilRuns& runs, const Bonds& b, Chunk&& chunk, Node&& node)
+{
+    if (!runs.fits(b) || runs.chunk_start.empty()) return false;
+    parallel_for(runs.chunk_start.size(), [&](std::size_t q) { chunk(q); });
+    parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
+    return true;
+}
 
 inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer_list<const std::vector<double>*> per_bond,
                                      std::initializer_list<const std::vector<double>*> per_node = {}, double tol = 1e-12)

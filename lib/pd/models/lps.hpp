@@ -262,11 +262,7 @@ private:
         };
 #ifdef PD_CHUNK_WIDTH
         if constexpr (!Damaged)
-            if (runs.fits(b) && !runs.chunk_start.empty()) {
-                parallel_for(runs.chunk_start.size(), [&](std::size_t q) { dilatation_chunk(b, y, runs.chunk_start[q]); });
-                parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
-                return;
-            }
+            if (for_chunks_then_rest(runs, b, [&](std::size_t q) { dilatation_chunk(b, y, runs.chunk_start[q]); }, node)) return;
 #endif
         parallel_for(b.nodes(), node);
     }
