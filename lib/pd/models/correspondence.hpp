@@ -159,7 +159,7 @@ struct Correspondence {
         }
         shape_tensors(b);
 #ifdef PD_CHUNK_WIDTH
-        if (!soa.empty()) chunk_setup(b);
+        if (!soa.empty()) detail::chunk_node_data(runs, b, Kinv, kinv_soa, regular, block_read);
 #endif
     }
 
@@ -473,9 +473,9 @@ private:
 #endif
 #ifdef PD_CHUNK_WIDTH
         if constexpr (fast)
-            if (!soa.empty() && runs.fits(b)) {  // chunks of W nodes, then the other nodes
+            if (!soa.empty()) {  // chunks of W nodes, then the other nodes
                 const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
-                parallel_for(runs.chunk_start.size(), [&](std::size_t q) {
+                auto chunk = [&](std::size_t q) {
                     const int i0 = runs.chunk_start[q], run = runs.chunk_run[q];
                     const std::int64_t tb = templates.begin[run];
                     double N[DD][detail::chunk_width];
@@ -486,13 +486,9 @@ private:
                         for (int e = 0; e < DD; ++e) Nl(e % D, e / D) = N[e][l];
                         node_stress(static_cast<std::size_t>(i0 + l), Nl);
                     }
-                });
-                parallel_for(runs.rest.size(), [&](std::size_t q) {
-                    const auto i = static_cast<std::size_t>(runs.rest[q]);
-                    node_stress(i, this->deformation_sum(b, i));
-                });
-                blocks_partial = true;
-                return;
+                };
+                if (for_chunks_then_rest(runs, b, chunk, [&](std::size_t i) { node_stress(i, this->deformation_sum(b, i)); }))
+                    return void(blocks_partial = true);
             }
 #endif
         blocks_partial = false;  // node_stress below writes every block
@@ -510,23 +506,6 @@ private:
     }
 
 #ifdef PD_CHUNK_WIDTH
-    // Copies of K^-1 for the chunks, which chunks have no singular node, and which nodes' blocks
-    // the per-node kernels of an undamaged pass read (the nodes outside chunks and their partners).
-    void chunk_setup(const Bonds& b)
-    {
-        const std::size_t n = b.nodes();
-        kinv_soa.assign(DD * n, 0.0);
-        for (std::size_t i = 0; i < n; ++i)
-            for (int e = 0; e < DD; ++e) kinv_soa[e * n + i] = Kinv[i](e % D, e / D);
-        block_read.assign(n, 0);
-        for (int i : runs.rest) {
-            block_read[i] = 1;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) block_read[b.partner[k]] = 1;
-        }
-        regular.assign(runs.chunk_start.size(), 1);
-        for (std::size_t q = 0; q < regular.size(); ++q)
-            for (int l = 0; l < detail::chunk_width; ++l) regular[q] = regular[q] && !Kinv[runs.chunk_start[q] + l].isZero(0);
-    }
     // Law::linear for the W nodes of a chunk, vectorised (correspondence_chunks.hpp), then the
     // per-node copies.
     void chunk_linear_stress(int i0, const double (*N)[detail::chunk_width])

@@ -59,6 +59,27 @@ ChunkTemplates chunk_templates(const StencilRuns& runs, const Bonds& b, const Fi
     return t;
 }
 
+// Per-node data of the chunk path: K^-1 as 9 arrays (entry e of node i at kinv[e n + i]), per chunk
+// whether every lane has K^-1 != 0 (else the stress goes node by node), and per node whether the
+// per-node kernels of an undamaged pass read its block (the nodes outside chunks and their partners).
+template <class Mat>
+void chunk_node_data(const StencilRuns& runs, const Bonds& b, const std::vector<Mat>& Kinv, std::vector<double>& kinv,
+                     std::vector<std::uint8_t>& regular, std::vector<std::uint8_t>& block_read)
+{
+    const std::size_t n = b.nodes();
+    kinv.assign(9 * n, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+        for (int e = 0; e < 9; ++e) kinv[e * n + i] = Kinv[i](e % 3, e / 3);
+    block_read.assign(n, 0);
+    for (int i : runs.rest) {
+        block_read[i] = 1;
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) block_read[b.partner[k]] = 1;
+    }
+    regular.assign(runs.chunk_start.size(), 1);
+    for (std::size_t q = 0; q < regular.size(); ++q)
+        for (int l = 0; l < chunk_width; ++l) regular[q] = regular[q] && !Kinv[runs.chunk_start[q] + l].isZero(0);
+}
+
 // N[a + 3 c][l] = sum_r (y_a(j_r + l) - y_a(i0 + l)) omega V_r xi_r,c  (F K of lane l); tb, s: the
 // template bonds of the chunk's run.
 inline void chunk_deformation_sums(const TemplateBond* tb, std::int64_t s, int i0, const double* const y[3],
