@@ -1,5 +1,5 @@
-// problems/3d/bar_stiffness.cpp -- quasi-static stiffness of a 3D bar (E measured) for PMB (with
-// and without the energy surface correction), LPS (with and without), LPS+SCF, PALS and correspondence.
+// problems/3d/bar_stiffness.cpp -- quasi-static stiffness E of a 3D bar: PMB and LPS (each with and
+// without the energy surface correction), LPS+SCF, PALS, correspondence.
 // Case: bar l2 x l1 x l3 = 10 x 2 x 1 mm (x axial), E = 100 GPa, nu = 0.33, cubic lattice
 // dx = l3/n, delta = 3.05 dx. Grips of --grip x delta (source: 2 delta) are ADDED OUTSIDE the
 // 10 mm (spec V2 [RECON]: inside zones would overlap at n = 1): left grip u_x = 0, right grip
@@ -170,8 +170,8 @@ static int run(int argc, char** argv)
         if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two measuring sections coincide");
         const pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
         // 3. Models; ADR density from each model's stiffness bound (dynamic_relaxation.hpp).
-        const pd::PMB::Params pmb_params{.material = mat, .dim = 3};
-        constexpr auto classical = pd::SurfaceCorrectionOptions::Reference::classical;
+        // Classical reference W_inf (the full lattice family does not fit in a bar 1-2 cells thick); kappa: PMB's.
+        const pd::SurfaceCorrectionOptions classical{.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K};
         auto scaled = [&](pd::Field<3> G) { for (auto& c : G.c) for (double& g : c) g *= bound_factor; return G; };
         for (const std::string& name : models)
             for (const std::string& corr : name == "pmb" || name == "lps" ? pmb_sc : std::vector<std::string>{"n/a"}) {
@@ -179,15 +179,13 @@ static int run(int argc, char** argv)
                 Outcome o;
                 const double nu_w = name == "pmb" ? 0.25 : nu;
                 if (name == "pmb") {
-                    pd::PMB model(pmb_params, pd::Influence{}, bonds);
-                    // Classical reference W_inf (the full lattice family does not fit in a bar 1-2 cells thick).
-                    pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr),
-                                                 {.reference = classical, .kappa = mat.K});
+                    pd::PMB model({.material = mat, .dim = 3}, pd::Influence{}, bonds);
+                    pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr), classical);
                     o = relax(model, pd::stiffness_bound(model, bonds, s.bar.body.x), s, bonds, nu_w, solve_by, start == "uniform");
                 } else if (name == "lps" || name == "lps-scf") {
                     pd::LPS model({.material = mat, .dim = 3}, bonds);
                     if (name == "lps-scf") model.apply_shear_correction(s.bar.body.x);
-                    else pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr), {.reference = classical});
+                    else pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr), classical);
                     o = relax(model, pd::stiffness_bound(model, bonds, s.bar.body.x), s, bonds, nu_w, solve_by, start == "uniform");
                 } else if (name == "pals") {
                     pd::PALS model({.material = mat}, s.bar.body, bonds);
