@@ -34,7 +34,7 @@
 //   vchunk chunk_scalar(int i0, std::int64_t k, int j, const vchunk& ylen) const;  // ordinary
 //        // bond_scalar of bond k of node i0 (partner j) for the W lanes i0 + l (partners j + l)
 // or
-//   void chunk_force(int q, const Bonds&, const Field<D>& y, Field<D>& f) const;  // f of chunk q's W nodes
+//   void run_force(int p, const Bonds&, const Field<D>& y, Field<D>& f) const;  // f of the nodes of run p's chunks
 // In undamaged scenes without per-bond output the bond pass then takes the chunks W nodes at a
 // time (node j's values as contiguous vectors, per-bond data as node i0's scalars) and the other
 // nodes with the per-node code; the split is fixed by the bonds, so results still do not depend on
@@ -202,9 +202,9 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
         }
     };
     // Chunks of translated families (stencil_runs.hpp), undamaged scenes only: W nodes per call.
-    if constexpr (!Damaged && requires { model.chunks(bonds); model.chunk_force(0, bonds, y, f); }) {
+    if constexpr (!Damaged && requires { model.chunks(bonds); model.run_force(0, bonds, y, f); }) {
         if (const StencilRuns* runs = model.chunks(bonds))
-            if (for_chunks_then_rest(*runs, bonds, [&](std::size_t q) { model.chunk_force(static_cast<int>(q), bonds, y, f); }, node)) return;
+            if (for_runs_then_rest(*runs, bonds, [&](std::size_t p) { model.run_force(static_cast<int>(p), bonds, y, f); }, node)) return;
     }
 #ifdef PD_CHUNK_WIDTH
     if constexpr (!Damaged && is_ordinary<Model>() && requires(const vchunk& v) { model.chunks(bonds); model.chunk_scalar(0, std::int64_t{}, 0, v); }) {

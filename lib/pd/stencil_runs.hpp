@@ -34,6 +34,7 @@ struct StencilRuns {
     std::vector<int> chunk_start;   // first node i0 of each chunk (nodes i0 .. i0 + W - 1)
     std::vector<int> chunk_run;     // run of each chunk, an index into run_first
     std::vector<int> run_first;     // first node t of each run that has chunks (its family is the template)
+    std::vector<int> run_chunks;    // chunks of run p: run_chunks[p] .. run_chunks[p + 1] - 1 (consecutive)
     std::vector<int> rest;          // nodes in no chunk, ascending
     bool fits(const Bonds& b) const
     {
@@ -77,6 +78,15 @@ bool for_chunks_then_rest(const StencilRuns& runs, const Bonds& b, Chunk&& chunk
     parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
     return true;
 }
+// The same with run(p) for every run p (all chunks of the run in one call), then the rest.
+template <class Run, class Node>
+bool for_runs_then_rest(const StencilRuns& runs, const Bonds& b, Run&& run, Node&& node)
+{
+    if (!runs.fits(b) || runs.chunk_start.empty()) return false;
+    parallel_for(runs.run_first.size(), [&](std::size_t p) { run(p); });
+    parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
+    return true;
+}
 
 inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer_list<const std::vector<double>*> per_bond,
                                      std::initializer_list<const std::vector<double>*> per_node = {}, double tol = 1e-12)
@@ -91,7 +101,10 @@ inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer
         std::size_t len = 1;
         while (t + len < n && detail::translates(b, t, t + len, per_bond, per_node, tol)) ++len;
         const std::size_t chunks = b.end(t) > b.begin(t) ? len / static_cast<std::size_t>(width) : 0;
-        if (chunks > 0) runs.run_first.push_back(static_cast<int>(t));
+        if (chunks > 0) {
+            runs.run_first.push_back(static_cast<int>(t));
+            runs.run_chunks.push_back(static_cast<int>(runs.chunk_start.size()));
+        }
         for (std::size_t c = 0; c < chunks; ++c) {
             runs.chunk_start.push_back(static_cast<int>(t + c * width));
             runs.chunk_run.push_back(static_cast<int>(runs.run_first.size()) - 1);
@@ -99,6 +112,7 @@ inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer
         for (std::size_t i = t + chunks * width; i < t + len; ++i) runs.rest.push_back(static_cast<int>(i));
         t += len;
     }
+    runs.run_chunks.push_back(static_cast<int>(runs.chunk_start.size()));
     return runs;
 }
 

@@ -112,9 +112,10 @@ struct Correspondence {
     static constexpr int BS = detail::correspondence_block;  // doubles per node block (24)
     // Chunks of translated families (stencil_runs.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
     // the bond pass and the deformation sums take W nodes at once (correspondence_chunks.hpp), reading
-    // A = P K^-1 and F from `soa` (18 arrays of nodes() doubles, written by point_pass).
+    // A = P K^-1 and F from `soa` (18 arrays of soa_n doubles, written by point_pass).
     StencilRuns runs;
     std::vector<double> soa;
+    std::size_t soa_n = 0;  // stride of soa and kinv_soa [doubles] (detail::soa_stride)
 #ifdef PD_CHUNK_WIDTH
     detail::ChunkTemplates templates;
     std::vector<double> kinv_soa;          // K^-1 as 9 arrays (chunks, Law::linear)
@@ -152,7 +153,8 @@ struct Correspondence {
             const std::initializer_list<const std::vector<double>*> xc{&x.c[0], &x.c[1], &x.c[2]};
             runs = c_hg != 0 ? find_stencil_runs(b, detail::chunk_width, {&wV, &hg}, xc) : find_stencil_runs(b, detail::chunk_width, {&wV}, xc);
             if (!runs.chunk_start.empty()) {
-                soa.assign(18 * b.nodes(), 0.0);
+                soa_n = detail::soa_stride(b.nodes());
+                soa.assign(18 * soa_n, 0.0);
                 templates = detail::chunk_templates(runs, b, x, wV, hg);
             }
 #endif
@@ -290,6 +292,7 @@ struct Correspondence {
         const double* blk;         // per node A and F, 4-padded columns (Correspondence::blocks; 3D)
         const StencilRuns* runs;   // chunks of translated families (3D, AVX2/AVX-512), or null
         const double* soa;         // A and F per node as 18 arrays (chunks only)
+        std::size_t soa_n;         // their stride
 #ifdef PD_CHUNK_WIDTH
         const detail::ChunkTemplates* templates;
 #endif
@@ -334,16 +337,17 @@ struct Correspondence {
             return f;
         }
 #ifdef PD_CHUNK_WIDTH
-        // Chunk hook of the bond loop (bond_loop.hpp): f of nodes i0 .. i0 + W - 1, undamaged.
+        // Chunk hook of the bond loop (bond_loop.hpp): f of the nodes of run p's chunks, undamaged.
         const StencilRuns* chunks(const Bonds& b) const { return runs && runs->fits(b) ? runs : nullptr; }
-        void chunk_force(int q, const Bonds&, const Field<D>& y, Field<D>& f) const
+        void run_force(int p, const Bonds&, const Field<D>& y, Field<D>& f) const
             requires(D == 3)
         {
-            const int run = runs->chunk_run[q];
-            const std::int64_t tb = templates->begin[run], s = templates->begin[run + 1] - tb;
+            const std::int64_t tb = templates->begin[p], s = templates->begin[p + 1] - tb;
+            const int c0 = runs->run_chunks[p];
             const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
             double* fc[3] = {f.c[0].data(), f.c[1].data(), f.c[2].data()};
-            detail::chunk_forces<Hourglass>(templates->bond.data() + tb, s, runs->chunk_start[q], yc, soa, runs->nodes, f_own, fc);
+            detail::run_forces<Hourglass>(templates->bond.data() + tb, s, runs->chunk_start.data() + c0, runs->run_chunks[p + 1] - c0, yc, soa,
+                                          soa_n, f_own, fc);
         }
 #endif
 #ifdef PD_CORRESPONDENCE_AVX2
@@ -369,6 +373,7 @@ struct Correspondence {
         kn.blk = blocks.empty() ? nullptr : blocks.data();
         kn.runs = soa.empty() ? nullptr : &runs;
         kn.soa = soa.empty() ? nullptr : soa.data();
+        kn.soa_n = soa_n;
 #ifdef PD_CHUNK_WIDTH
         kn.templates = &templates;
 #endif
@@ -514,7 +519,7 @@ private:
         double Fl[DD][W], S[DD][W], A[DD][W];
         const double* mxi[3] = {m_xi.c[0].data(), m_xi.c[1].data(), m_xi.c[2].data()};
         double* fo[3] = {f_own.c[0].data(), f_own.c[1].data(), f_own.c[2].data()};
-        detail::chunk_linear_stress(i0, N, kinv_soa.data(), F.size(), mxi, lambda, par.material.G, Fl, S, A, soa.data(), fo);
+        detail::chunk_linear_stress(i0, N, kinv_soa.data(), soa_n, mxi, lambda, par.material.G, Fl, S, A, soa.data(), fo);
         for (int l = 0; l < W; ++l) {
             const std::size_t i = static_cast<std::size_t>(i0 + l);
             for (int e = 0; e < DD; ++e) {
@@ -572,7 +577,7 @@ private:
     void write_block(std::size_t i)
     {
         if (!soa.empty()) {
-            const std::size_t n = F.size();
+            const std::size_t n = soa_n;
             for (int e = 0; e < DD; ++e) {
                 soa[e * n + i] = PKinv[i](e % D, e / D);
                 soa[(DD + e) * n + i] = F[i](e % D, e / D);

@@ -9,8 +9,8 @@
 //                          + hg_r ((2Y - (F_l + F_(j_r + l)) xi_r).Y / |Y|^2) Y,   Y = y_(j_r + l) - y_(i0 + l)
 //                      plus the i-end term P_l K_l^-1 m_xi of the point pass (f_own),
 // with A = P K^-1 and F read from structure-of-arrays copies (entry a + 3 c of node j at
-// soa[(a + 3 c) n + j] for A, soa[(9 + a + 3 c) n + j] for F); W = 8 (AVX-512) or 4 (AVX2),
-// chunk_simd.hpp.
+// soa[(a + 3 c) n + j] for A, soa[(9 + a + 3 c) n + j] for F, stride n = soa_stride(nodes)); W = 8
+// (AVX-512) or 4 (AVX2), chunk_simd.hpp.
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/chunk_simd.hpp"
@@ -22,6 +22,12 @@
 
 #ifdef PD_CHUNK_WIDTH
 namespace pd::detail {
+
+// Stride [doubles] of the structure-of-arrays copies (soa, K^-1) for n nodes: n rounded up to a
+// whole 4 KiB page plus 3 cache lines. With a stride of a whole number of pages the 18 arrays
+// of A and F would map onto the same L1 sets and evict each other (the bond pass read its partner
+// values 1.8x slower, measured); 3 lines apart they spread over the sets.
+inline std::size_t soa_stride(std::size_t n) { return (n + 511) / 512 * 512 + 24; }
 
 // One bond of a run's template family (the family of the run's first node t, stencil_runs.hpp):
 // what every chunk of the run uses for its bond r (64 bytes, so a bond is one cache line).
@@ -59,17 +65,17 @@ ChunkTemplates chunk_templates(const StencilRuns& runs, const Bonds& b, const Fi
     return t;
 }
 
-// Per-node data of the chunk path: K^-1 as 9 arrays (entry e of node i at kinv[e n + i]), per chunk
+// Per-node data of the chunk path: K^-1 as 9 arrays (entry e of node i at kinv[e ns + i], stride ns = soa_stride(n)), per chunk
 // whether every lane has K^-1 != 0 (else the stress goes node by node), and per node whether the
 // per-node kernels of an undamaged pass read its block (the nodes outside chunks and their partners).
 template <class Mat>
 void chunk_node_data(const StencilRuns& runs, const Bonds& b, const std::vector<Mat>& Kinv, std::vector<double>& kinv,
                      std::vector<std::uint8_t>& regular, std::vector<std::uint8_t>& block_read)
 {
-    const std::size_t n = b.nodes();
-    kinv.assign(9 * n, 0.0);
+    const std::size_t n = b.nodes(), ns = soa_stride(n);
+    kinv.assign(9 * ns, 0.0);
     for (std::size_t i = 0; i < n; ++i)
-        for (int e = 0; e < 9; ++e) kinv[e * n + i] = Kinv[i](e % 3, e / 3);
+        for (int e = 0; e < 9; ++e) kinv[e * ns + i] = Kinv[i](e % 3, e / 3);
     block_read.assign(n, 0);
     for (int i : runs.rest) {
         block_read[i] = 1;
@@ -97,35 +103,48 @@ inline void chunk_deformation_sums(const TemplateBond* tb, std::int64_t s, int i
     for (int e = 0; e < 9; ++e) store_chunk(N[e], acc[e]);
 }
 
-// f_a(i0 + l) for the W lanes [N/m^3]: the bond sums above plus f_own.
+// f_a(i0 + l) for the W lanes of every chunk of one run [N/m^3] (the chunks' first nodes start[0 ..
+// chunks - 1]): the bond sums above plus f_own. The bonds go in blocks of `block`, each block over
+// all chunks of the run, with the partial sums kept in f: the partner values of one block (21
+// arrays) stay in L1 from one chunk to the next, which those of a whole family do not. Each lane
+// still adds its bonds in family order, as a chunk taken alone would.
 template <bool Hourglass>
-inline void chunk_forces(const TemplateBond* tb, std::int64_t s, int i0, const double* const y[3], const double* soa,
-                         std::size_t n, const double* const f_own[3], double* const f[3])
+inline void run_forces(const TemplateBond* tb, std::int64_t s, const int* start, int chunks, const double* const y[3],
+                       const double* soa, std::size_t n, const double* const f_own[3], double* const f[3])
 {
-    const vchunk yi[3] = {load_chunk(y[0] + i0), load_chunk(y[1] + i0), load_chunk(y[2] + i0)};
-    vchunk Fi[9];
-    if constexpr (Hourglass)
-        for (int e = 0; e < 9; ++e) Fi[e] = load_chunk(soa + (9 + e) * n + i0);
-    vchunk acc[3] = {};
-    for (std::int64_t r = 0; r < s; ++r) {
-        const std::int64_t j = i0 + tb[r].offset;
-        for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) acc[a] += load_chunk(soa + (a + 3 * c) * n + j) * tb[r].wxi[c];
-        if constexpr (Hourglass) {
-            vchunk Y[3], y2 = {}, gY = {};
-            for (int a = 0; a < 3; ++a) {
-                Y[a] = load_chunk(y[a] + j) - yi[a];
-                vchunk g = {};
-                for (int c = 0; c < 3; ++c) g += (Fi[a + 3 * c] + load_chunk(soa + (9 + a + 3 * c) * n + j)) * tb[r].xi[c];
-                y2 += Y[a] * Y[a];
-                gY += g * Y[a];
+    constexpr std::int64_t block = 32;
+    for (std::int64_t r0 = 0; r0 < s; r0 += block) {
+        const std::int64_t r1 = r0 + block < s ? r0 + block : s;
+        for (int q = 0; q < chunks; ++q) {
+            const int i0 = start[q];
+            const vchunk yi[3] = {load_chunk(y[0] + i0), load_chunk(y[1] + i0), load_chunk(y[2] + i0)};
+            vchunk Fi[9];
+            if constexpr (Hourglass)
+                for (int e = 0; e < 9; ++e) Fi[e] = load_chunk(soa + (9 + e) * n + i0);
+            vchunk acc[3] = {};
+            if (r0 > 0)
+                for (int a = 0; a < 3; ++a) acc[a] = load_chunk(f[a] + i0);
+            for (std::int64_t r = r0; r < r1; ++r) {
+                const std::int64_t j = i0 + tb[r].offset;
+                for (int a = 0; a < 3; ++a)
+                    for (int c = 0; c < 3; ++c) acc[a] += load_chunk(soa + (a + 3 * c) * n + j) * tb[r].wxi[c];
+                if constexpr (Hourglass) {
+                    vchunk Y[3], y2 = {}, gY = {};
+                    for (int a = 0; a < 3; ++a) {
+                        Y[a] = load_chunk(y[a] + j) - yi[a];
+                        vchunk g = {};
+                        for (int c = 0; c < 3; ++c) g += (Fi[a + 3 * c] + load_chunk(soa + (9 + a + 3 * c) * n + j)) * tb[r].xi[c];
+                        y2 += Y[a] * Y[a];
+                        gY += g * Y[a];
+                    }
+                    const vchunk den = y2 > vchunk{} ? y2 : splat(1.0);  // |Y| = 0 (collapsed bond): no hourglass force
+                    const vchunk t = tb[r].hg * (2.0 * y2 - gY) / den;
+                    for (int a = 0; a < 3; ++a) acc[a] += t * Y[a];
+                }
             }
-            const vchunk den = y2 > vchunk{} ? y2 : splat(1.0);  // |Y| = 0 (collapsed bond): no hourglass force
-            const vchunk t = tb[r].hg * (2.0 * y2 - gY) / den;
-            for (int a = 0; a < 3; ++a) acc[a] += t * Y[a];
+            for (int a = 0; a < 3; ++a) store_chunk(f[a] + i0, r1 == s ? acc[a] + load_chunk(f_own[a] + i0) : acc[a]);
         }
     }
-    for (int a = 0; a < 3; ++a) store_chunk(f[a] + i0, acc[a] + load_chunk(f_own[a] + i0));
 }
 
 // Law::linear for the W lanes of a chunk, from the deformation sums N[9][W] (column-major entries):
