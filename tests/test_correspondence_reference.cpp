@@ -184,3 +184,74 @@ TEST(CorrespondenceReference, BondPassAfterEnablingDamageUsesTheChunkedPointPass
         }
     EXPECT_LT(diff, 1e-12 * scale);  // round-off of the two summation orders
 }
+
+// Params::node_matrices = false: the chunked point pass leaves F, sigma, P and P K^-1 of chunk
+// nodes in its own arrays. The forces must not change, sync_node_matrices must give the values the
+// default pass stores (the same operations, so equal to round-off), and everything that reads
+// them (energy_density, the public bond_force, a damaged bond pass) must see current values.
+TEST(CorrespondenceReference, NodeMatricesOffGivesTheSameForcesAndMatrices)
+{
+    using C3 = Correspondence<3>;
+    auto body = box<3>({{0, 0, 0}}, {{24 * dx, 5 * dx, 4 * dx}}, dx);
+    Bonds b = build_bonds(body, m_ratio * dx);
+    C3::Params p{Elastic::from_E_nu(200e9, 0.3), C3::Law::linear, 0.02};
+    C3 full(p, body, b);
+    p.node_matrices = false;
+    C3 lean(p, body, b);
+    const Field<3> y = random_deformation(body, 31);
+    Field<3> f_full, f_lean;
+    internal_force(full, b, y, f_full);
+    internal_force(lean, b, y, f_lean);
+    for (int d = 0; d < 3; ++d)
+        for (std::size_t i = 0; i < body.size(); ++i) ASSERT_EQ(f_lean.c[d][i], f_full.c[d][i]) << "node " << i;
+#ifdef PD_CHUNK_WIDTH
+    ASSERT_TRUE(lean.matrices_partial);
+    std::size_t i0 = 0;  // a chunk node whose matrices the pass skipped (not read by a per-node kernel)
+    for (int s : lean.runs.chunk_start)
+        for (int l = 0; l < detail::chunk_width; ++l)
+            if (!lean.block_read[s + l]) i0 = static_cast<std::size_t>(s + l);
+    ASSERT_FALSE(lean.block_read[i0]);
+    EXPECT_TRUE(lean.F[i0].isIdentity(0)) << "not skipped: the test would prove nothing";
+    // The public per-bond force (bond loops of wrappers) fills them in first, from parallel code too.
+    Field<3> fb_full(body.size()), fb_lean(body.size());
+    parallel_for(body.size(), [&](std::size_t i) {
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+            const int j = b.partner[k];
+            const Vec<3> Y{y.c[0][j] - y.c[0][i], y.c[1][j] - y.c[1][i], y.c[2][j] - y.c[2][i]};
+            const Vec<3> a = full.bond_force(i, k, j, Y), c = lean.bond_force(i, k, j, Y);
+            for (int d = 0; d < 3; ++d) { fb_full.c[d][i] += a[d]; fb_lean.c[d][i] += c[d]; }
+        }
+    });
+    EXPECT_FALSE(lean.matrices_partial);
+    for (int d = 0; d < 3; ++d)
+        for (std::size_t i = 0; i < body.size(); ++i) ASSERT_EQ(fb_lean.c[d][i], fb_full.c[d][i]) << "node " << i;
+    internal_force(lean, b, y, f_lean);
+    ASSERT_TRUE(lean.matrices_partial);
+#endif
+    const std::vector<double> W_full = full.energy_density(b, y), W_lean = lean.energy_density(b, y);  // syncs
+    EXPECT_FALSE(lean.matrices_partial);
+    double scale = 0;
+    for (std::size_t i = 0; i < body.size(); ++i) scale = std::max(scale, full.sigma[i].cwiseAbs().maxCoeff());
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        ASSERT_EQ(lean.F[i], full.F[i]) << "node " << i;
+        ASSERT_EQ(lean.PKinv[i], full.PKinv[i]) << "node " << i;
+        ASSERT_LE((lean.sigma[i] - full.sigma[i]).cwiseAbs().maxCoeff(), 1e-15 * scale) << "node " << i;
+        ASSERT_EQ(lean.P[i], lean.sigma[i]) << "node " << i;
+        ASSERT_NEAR(W_lean[i], W_full[i], 1e-14 * std::abs(W_full[i]) + 1e-300) << "node " << i;
+    }
+    // A damaged bond pass right after a lean point pass completes the per-node blocks from them.
+    internal_force(lean, b, y, f_lean);
+#ifdef PD_CHUNK_WIDTH
+    ASSERT_TRUE(lean.matrices_partial);
+#endif
+    b.enable_damage();
+    Field<3> g;
+    bond_forces(lean, b, y, g);
+    double diff = 0, fmax = 0;
+    for (int d = 0; d < 3; ++d)
+        for (std::size_t i = 0; i < body.size(); ++i) {
+            diff = std::max(diff, std::abs(g.c[d][i] - f_full.c[d][i]));
+            fmax = std::max(fmax, std::abs(f_full.c[d][i]));
+        }
+    EXPECT_LT(diff, 1e-12 * fmax);  // round-off of the two summation orders
+}

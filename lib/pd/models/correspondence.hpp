@@ -25,20 +25,18 @@
 // spurious stress. Peridigm pairs v_nph with y_np1, which gives a spurious expansion
 // N (1 - cos(theta/N)) per rotation theta in N steps (2.8e-2 K of stress for 90 degrees in 100 steps;
 // tests/test_correspondence.cpp).
-// Cost (issue 3; reports/3d/model_cost.md): the family sums K, F K (and Fdot K) are lane sums in the
-// bond-loop order, K and sum omega xi V in the same pass as F once bonds can break; the i-end force
-// P_i K_i^-1 sum_j omega xi V_j is summed once per node (kernel node_force); the bond kernel reads
-// P_j K_j^-1 and F_j of node j (18 values per bond). 3D with AVX2/FMA (round 3 of issue 3): both
-// passes are vectorised within the bond where they touch node j (correspondence_simd.hpp: the
-// partner matrices as 6 aligned column loads from `blocks`; padded x and y), same lanes and order
-// as the generic code. 3D undamaged with AVX2 or AVX-512 (round 4): nodes with translated families
-// (stencil_runs.hpp) take both passes W at a time (correspondence_chunks.hpp, `soa`).
+// Cost (issue 3; reports/3d/model_cost.md): family sums are lane sums in the bond-loop order; the
+// i-end force P_i K_i^-1 sum_j omega xi V_j is summed once per node (node_force); the bond kernel
+// reads P_j K_j^-1 and F_j (18 values per bond). 3D with AVX2/FMA: vectorised within the bond
+// (correspondence_simd.hpp, `blocks`); undamaged, nodes with translated families (stencil_runs.hpp)
+// take both passes W at a time (correspondence_chunks.hpp, `soa`).
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
 #include "pd/influence.hpp"
 #include "pd/lattice.hpp"
+#include "pd/laws/flanagan_taylor.hpp"
 #include "pd/material.hpp"
 #include "pd/models/correspondence_chunks.hpp"
 #include "pd/models/correspondence_simd.hpp"
@@ -49,9 +47,11 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <mutex>
 #include <new>
 #include <stdexcept>
 #include <vector>
@@ -75,6 +75,11 @@ struct Correspondence {
         double C_hg = 0;               // Littlewood hourglass coefficient [-]; 0 = off, source 0.02
         Plane plane = Plane::strain;   // 2D reduction of the linear law
         double measure = 1;            // 2D thickness [m] (hourglass micromodulus only)
+        // F, sigma, P, PKinv of every node after each point pass (default). false: the chunked point
+        // pass (3D, Law::linear, no damage) leaves those of chunk nodes in its own arrays until
+        // sync_node_matrices() (energy_density and a bond pass that needs them call it): for runs
+        // that read only forces and energies; saves their memory traffic (~6 % of a step).
+        bool node_matrices = true;
     };
 
     Params par;
@@ -86,25 +91,17 @@ struct Correspondence {
     Field<D> m_xi;                    // sum_j omega xi V_j over intact bonds [m^4 in 3D] (0 for a full family)
     Field<D> f_own;                   // P_i K_i^-1 m_xi: the i-end force summed over the family [N/m^3]
     std::vector<Mat> Kinv;            // K_i^-1 [m^-5 in 3D]
-    std::vector<Mat> F;               // deformation gradient [-]
-    std::vector<Mat> sigma;           // Cauchy stress [Pa] (Law::linear: the small-strain stress)
-    std::vector<Mat> P;               // first Piola-Kirchhoff stress [Pa]
-    std::vector<Mat> PKinv;           // P_i K_i^-1 [Pa/m^5 in 3D]
+    // Per node (mutable: sync_node_matrices fills them in on demand, Params::node_matrices):
+    mutable std::vector<Mat> F;       // deformation gradient [-]
+    mutable std::vector<Mat> sigma;   // Cauchy stress [Pa] (Law::linear: the small-strain stress)
+    mutable std::vector<Mat> P;       // first Piola-Kirchhoff stress [Pa]
+    mutable std::vector<Mat> PKinv;   // P_i K_i^-1 [Pa/m^5 in 3D]
+    mutable bool matrices_partial = false;  // chunk nodes' F, sigma, P, PKinv not written (node_matrices = false)
     std::vector<Mat> sigma_hat, R, V; // Flanagan-Taylor: unrotated stress [Pa], rotation, left stretch [-]
-    // Copy of P K^-1 [Pa/m^5] and F [-] per node for the bond kernel, written by point_pass: 3D, per
-    // node 24 doubles (64-byte aligned) = per column c the 4-padded A(:,c) then the 4-padded F(:,c),
-    // so that a bond reads the partner's matrices as 6 aligned 256-bit loads (3 cache lines).
-    struct Aligned64 {  // allocator of 64-byte aligned doubles (a block starts a cache line)
-        using value_type = double;
-        template <class U>
-        struct rebind { using other = Aligned64; };  // only ever rebound to double
-        double* allocate(std::size_t n) { return static_cast<double*>(::operator new(n * sizeof(double), std::align_val_t{64})); }
-        void deallocate(double* p, std::size_t) { ::operator delete(p, std::align_val_t{64}); }
-        friend bool operator==(Aligned64, Aligned64) { return true; }
-    };
-    // The chunk path writes blocks only where the per-node kernels of that pass read them
-    // (block_read); a bond pass that reads all (damaged bonds, or bonds the runs do not fit)
-    // completes them first (with_kernel).
+    // P K^-1 [Pa/m^5] and F [-] per node for the bond kernel (3D, correspondence_simd.hpp: 24 doubles
+    // per node, 64-byte aligned). The chunk path writes them only where the per-node kernels of that
+    // pass read them (block_read); a bond pass that reads all completes them first (with_kernel).
+    using Aligned64 = detail::Aligned64;
     mutable std::vector<double, Aligned64> blocks;
     mutable bool blocks_partial = false;
     std::vector<std::uint8_t> block_read;  // per node: read by the per-node kernels of an undamaged pass
@@ -385,6 +382,7 @@ struct Correspondence {
     void with_kernel(Pass&& pass, const Bonds& b) const
     {
         if (blocks_partial && (b.has_damage() || !runs.fits(b))) {
+            sync_node_matrices();
             parallel_for(F.size(), [&](std::size_t i) { write_node_block(i); });
             blocks_partial = false;
         }
@@ -392,10 +390,28 @@ struct Correspondence {
         else pass(kernel<false>());
     }
 
+    // F, sigma, P and PKinv of the chunk nodes a point pass with node_matrices = false left in its
+    // own arrays (no-op otherwise): F and P K^-1 from soa, sigma = P by the chunk's formula
+    // (correspondence_chunks.hpp, chunk_linear_stress). Safe from parallel code: the first caller
+    // fills them in, the others wait for it.
+    void sync_node_matrices() const
+    {
+#ifdef PD_CHUNK_WIDTH
+        std::atomic_ref<bool> partial(matrices_partial);
+        if (!partial.load(std::memory_order_acquire)) return;
+        static std::mutex m;
+        const std::lock_guard<std::mutex> lock(m);
+        if (!partial.load(std::memory_order_relaxed)) return;
+        if constexpr (D == 3) detail::sync_chunk_matrices(runs, regular, block_read, soa.data(), soa_n, lambda, par.material.G, F, PKinv, sigma, P);
+        partial.store(false, std::memory_order_release);
+#endif
+    }
+
     // Force density on i from bond k (i -> j), both ends' states included [N/m^3]: the kernel's
     // plus the i-end term omega V_j P_i K_i^-1 xi of this bond.
     Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const
     {
+        sync_node_matrices();  // the kernel reads F and P K^-1 of both nodes
         Vec<D> f = c_hg != 0 ? kernel<true>().bond_force(i, k, j, Y) : kernel<false>().bond_force(i, k, j, Y);
         const Col own = wV[k] * (PKinv[i] * xi(i, j));
         for (int d = 0; d < D; ++d) f[d] += own(d);
@@ -408,6 +424,7 @@ struct Correspondence {
     template <int Dy>
     std::vector<double> energy_density(const Bonds& b, const Field<Dy>&) const
     {
+        sync_node_matrices();
         std::vector<double> W(b.nodes(), 0.0);
         for (std::size_t i = 0; i < b.nodes(); ++i) {
             const Mat eps = par.law == Law::saint_venant_kirchhoff
@@ -420,7 +437,7 @@ struct Correspondence {
     }
 
     // Flanagan-Taylor update (3D): from F at y and Fdot at v, advance R, V, sigma_hat by dt [s]
-    // and set sigma = R sigma_hat R^T (000b sec. 1.5 [CODE] steps 1-8; 000a sec. 2.7).
+    // and set sigma = R sigma_hat R^T (laws/flanagan_taylor.hpp; 000b sec. 1.5 [CODE] steps 1-8).
     template <int Dy>
     void update_stress(const Bonds& b, const Field<Dy>& y, const Field<Dy>& v, double dt)
     {
@@ -439,27 +456,7 @@ struct Correspondence {
             }
             if (Kinv[i].isZero(0)) return;
             F[i] = N[0] * Kinv[i];
-            const Mat Fdot = N[1] * Kinv[i];                      // step 1
-            const Mat L = Fdot * F[i].inverse();                  // step 2
-            const Mat Dr = 0.5 * (L + L.transpose()), Wr = 0.5 * (L - L.transpose());
-            const Mat VD = V[i] * Dr;                             // step 3: z_i = eps_ijk (V D)_jk
-            const Col z(VD(1, 2) - VD(2, 1), VD(2, 0) - VD(0, 2), VD(0, 1) - VD(1, 0));
-            const Col w(Wr(2, 1), Wr(0, 2), Wr(1, 0));            // axial vector, W a = w x a
-            const Col om = w + (V[i].trace() * Mat::Identity() - V[i]).inverse() * z;  // step 4
-            Mat Om;                                               // Om a = om x a
-            Om << 0, -om(2), om(1), om(2), 0, -om(0), -om(1), om(0), 0;
-            const double o2 = om.squaredNorm();
-            Mat Q = Mat::Identity();                              // step 5: Q = exp(dt Om), Rodrigues
-            if (o2 > 1e-30) {
-                const double o = std::sqrt(o2);
-                Q += std::sin(dt * o) / o * Om + (1 - std::cos(dt * o)) / o2 * Om * Om;
-            }
-            R[i] = Q * R[i];                                      // step 6
-            V[i] += dt * (L * V[i] - V[i] * Om);                  // step 7
-            const Mat d = R[i].transpose() * Dr * R[i];           // step 8
-            const double tr = d.trace();                          // erratum 2: K tr(d)
-            sigma_hat[i] += dt * (K * tr * Mat::Identity() + 2 * G * (d - tr / 3 * Mat::Identity()));
-            sigma[i] = R[i] * sigma_hat[i] * R[i].transpose();    // erratum 3
+            sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], K, G, dt);  // step 1: Fdot = N[1] K^-1
         });
     }
 
@@ -492,11 +489,13 @@ private:
                         node_stress(static_cast<std::size_t>(i0 + l), Nl);
                     }
                 };
-                if (for_chunks_then_rest(runs, b, chunk, [&](std::size_t i) { node_stress(i, this->deformation_sum(b, i)); }))
+                if (for_chunks_then_rest(runs, b, chunk, [&](std::size_t i) { node_stress(i, this->deformation_sum(b, i)); })) {
+                    matrices_partial = !par.node_matrices && par.law == Law::linear;
                     return void(blocks_partial = true);
+                }
             }
 #endif
-        blocks_partial = false;  // node_stress below writes every block
+        blocks_partial = matrices_partial = false;  // node_stress below writes every block and matrix
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
@@ -515,13 +514,13 @@ private:
     // per-node copies.
     void chunk_linear_stress(int i0, const double (*N)[detail::chunk_width])
     {
-        constexpr int W = detail::chunk_width;
-        double Fl[DD][W], S[DD][W], A[DD][W];
+        double Fl[DD][detail::chunk_width], S[DD][detail::chunk_width], A[DD][detail::chunk_width];
         const double* mxi[3] = {m_xi.c[0].data(), m_xi.c[1].data(), m_xi.c[2].data()};
         double* fo[3] = {f_own.c[0].data(), f_own.c[1].data(), f_own.c[2].data()};
         detail::chunk_linear_stress(i0, N, kinv_soa.data(), soa_n, mxi, lambda, par.material.G, Fl, S, A, soa.data(), fo);
-        for (int l = 0; l < W; ++l) {
+        for (int l = 0; l < detail::chunk_width; ++l) {
             const std::size_t i = static_cast<std::size_t>(i0 + l);
+            if (!par.node_matrices && !block_read[i]) continue;  // sync_node_matrices
             for (int e = 0; e < DD; ++e) {
                 F[i](e % D, e / D) = Fl[e][l];
                 sigma[i](e % D, e / D) = S[e][l];

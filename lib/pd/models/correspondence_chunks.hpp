@@ -15,6 +15,7 @@
 #include "pd/bonds.hpp"
 #include "pd/chunk_simd.hpp"
 #include "pd/field.hpp"
+#include "pd/parallel.hpp"
 #include "pd/stencil_runs.hpp"
 
 #include <cstdint>
@@ -145,6 +146,39 @@ inline void run_forces(const TemplateBond* tb, std::int64_t s, const int* start,
             for (int a = 0; a < 3; ++a) store_chunk(f[a] + i0, r1 == s ? acc[a] + load_chunk(f_own[a] + i0) : acc[a]);
         }
     }
+}
+
+// The stress of chunk_linear_stress for one node (the same operations, so the same values):
+// sigma = G (F + F^T) + (lambda (tr F - 3) - 2 G) I.
+template <class Mat>
+Mat linear_stress_of(const Mat& F, double lambda, double G)
+{
+    Mat S;
+    const double tr = F(0, 0) + F(1, 1) + F(2, 2) - 3.0;
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) S(a, c) = G * (F(a, c) + F(c, a)) + (a == c ? lambda * tr - 2 * G : 0.0);
+    return S;
+}
+
+// F, P K^-1, sigma and P = sigma per node from the chunk arrays, for the lanes of the regular chunks
+// that the chunked pass did not copy (Correspondence::sync_node_matrices).
+template <class Mat>
+void sync_chunk_matrices(const StencilRuns& runs, const std::vector<std::uint8_t>& regular, const std::vector<std::uint8_t>& copied,
+                         const double* soa, std::size_t n, double lambda, double G, std::vector<Mat>& F, std::vector<Mat>& A,
+                         std::vector<Mat>& sigma, std::vector<Mat>& P)
+{
+    parallel_for(runs.chunk_start.size(), [&](std::size_t q) {
+        for (int l = 0; regular[q] && l < chunk_width; ++l) {
+            const std::size_t i = static_cast<std::size_t>(runs.chunk_start[q] + l);
+            if (copied[i]) continue;
+            for (int e = 0; e < 9; ++e) {
+                F[i](e % 3, e / 3) = soa[(9 + e) * n + i];
+                A[i](e % 3, e / 3) = soa[e * n + i];
+            }
+            sigma[i] = linear_stress_of(F[i], lambda, G);
+            P[i] = sigma[i];
+        }
+    });
 }
 
 // Law::linear for the W lanes of a chunk, from the deformation sums N[9][W] (column-major entries):

@@ -12,6 +12,8 @@
 //                        positions 4-padded per node, 2 loads per bond).
 // Kn is Correspondence<3>::Kernel<Hourglass> (members x, wV, hg, blk, bond_force, node_share, node_force).
 #pragma once
+#include <cstddef>
+#include <new>
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
@@ -27,6 +29,14 @@
 namespace pd::detail {
 
 inline constexpr int correspondence_block = 24;  // doubles per node block: 3 columns x (A 4, F 4)
+struct Aligned64 {  // allocator of 64-byte aligned doubles (a block starts a cache line)
+    using value_type = double;
+    template <class U>
+    struct rebind { using other = Aligned64; };  // only ever rebound to double
+    double* allocate(std::size_t n) { return static_cast<double*>(::operator new(n * sizeof(double), std::align_val_t{64})); }
+    void deallocate(double* p, std::size_t) { ::operator delete(p, std::align_val_t{64}); }
+    friend bool operator==(Aligned64, Aligned64) { return true; }
+};
 
 #ifdef PD_CORRESPONDENCE_AVX2
 // 4 x 4 transpose of the first 3 entries: r[b][d] -> out[d][b].

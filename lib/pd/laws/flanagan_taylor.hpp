@@ -1,0 +1,40 @@
+// pd/laws/flanagan_taylor.hpp -- the hypoelastic large-rotation update of Flanagan and Taylor for
+// one material point (knows nothing of bonds; spec/000b sec. 1.5 [CODE] steps 2-8 with errata 2-3,
+// spec/000a sec. 2.7). From F and Fdot at the point:
+//   L = Fdot F^-1, D = sym L, W = skew L;  omega = w + (tr(V) I - V)^-1 z,  z_i = eps_ijk (V D)_jk
+//   R <- exp(dt Omega) R (Rodrigues),  V <- V + dt (L V - V Omega)
+//   d = R^T D R,  sigma_hat <- sigma_hat + dt (K tr(d) I + 2 G dev(d)),  sigma = R sigma_hat R^T.
+// R, V and the unrotated stress sigma_hat are the point's state; returns sigma [Pa].
+#pragma once
+#include "pd/laws/elastic.hpp"
+
+#include <cmath>
+
+namespace pd::laws {
+
+inline Mat3 flanagan_taylor_step(const Mat3& F, const Mat3& Fdot, Mat3& R, Mat3& V, Mat3& sigma_hat, double K, double G, double dt)
+{
+    using Col = Eigen::Vector3d;
+    const Mat3 L = Fdot * F.inverse();                    // step 2
+    const Mat3 Dr = 0.5 * (L + L.transpose()), Wr = 0.5 * (L - L.transpose());
+    const Mat3 VD = V * Dr;                               // step 3: z_i = eps_ijk (V D)_jk
+    const Col z(VD(1, 2) - VD(2, 1), VD(2, 0) - VD(0, 2), VD(0, 1) - VD(1, 0));
+    const Col w(Wr(2, 1), Wr(0, 2), Wr(1, 0));            // axial vector, W a = w x a
+    const Col om = w + (V.trace() * Mat3::Identity() - V).inverse() * z;  // step 4
+    Mat3 Om;                                              // Om a = om x a
+    Om << 0, -om(2), om(1), om(2), 0, -om(0), -om(1), om(0), 0;
+    const double o2 = om.squaredNorm();
+    Mat3 Q = Mat3::Identity();                            // step 5: Q = exp(dt Om), Rodrigues
+    if (o2 > 1e-30) {
+        const double o = std::sqrt(o2);
+        Q += std::sin(dt * o) / o * Om + (1 - std::cos(dt * o)) / o2 * Om * Om;
+    }
+    R = Q * R;                                            // step 6
+    V += dt * (L * V - V * Om);                           // step 7
+    const Mat3 d = R.transpose() * Dr * R;                // step 8
+    const double tr = d.trace();                          // erratum 2: K tr(d)
+    sigma_hat += dt * (K * tr * Mat3::Identity() + 2 * G * (d - tr / 3 * Mat3::Identity()));
+    return R * sigma_hat * R.transpose();                 // erratum 3
+}
+
+}  // namespace pd::laws
