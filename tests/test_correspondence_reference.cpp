@@ -188,22 +188,28 @@ TEST(CorrespondenceReference, BondPassAfterEnablingDamageUsesTheChunkedPointPass
 // Params::node_matrices = false: the chunked point pass leaves F, sigma, P and P K^-1 of chunk
 // nodes in its own arrays. The forces must not change, sync_node_matrices must give the values the
 // default pass stores (the same operations, so equal to round-off), and everything that reads
-// them (energy_density, the public bond_force, a damaged bond pass) must see current values.
+// them (the public bond_force, from parallel code too, energy_density, a damaged bond pass) must
+// see the current values. Each reader follows a lean pass at a new deformation, so that matrices
+// left from an earlier sync are stale; 24 x 10 x 10 nodes, above parallel_min_nodes.
 TEST(CorrespondenceReference, NodeMatricesOffGivesTheSameForcesAndMatrices)
 {
     using C3 = Correspondence<3>;
-    auto body = box<3>({{0, 0, 0}}, {{24 * dx, 5 * dx, 4 * dx}}, dx);
+    auto body = box<3>({{0, 0, 0}}, {{24 * dx, 10 * dx, 10 * dx}}, dx);
+    ASSERT_GE(static_cast<long>(body.size()), parallel_min_nodes);
     Bonds b = build_bonds(body, m_ratio * dx);
     C3::Params p{Elastic::from_E_nu(200e9, 0.3), C3::Law::linear, 0.02};
     C3 full(p, body, b);
     p.node_matrices = false;
     C3 lean(p, body, b);
-    const Field<3> y = random_deformation(body, 31);
     Field<3> f_full, f_lean;
-    internal_force(full, b, y, f_full);
-    internal_force(lean, b, y, f_lean);
-    for (int d = 0; d < 3; ++d)
-        for (std::size_t i = 0; i < body.size(); ++i) ASSERT_EQ(f_lean.c[d][i], f_full.c[d][i]) << "node " << i;
+    auto both_at = [&](const Field<3>& y) {  // point and bond pass of both models; forces equal
+        internal_force(full, b, y, f_full);
+        internal_force(lean, b, y, f_lean);
+        for (int d = 0; d < 3; ++d)
+            for (std::size_t i = 0; i < body.size(); ++i) ASSERT_EQ(f_lean.c[d][i], f_full.c[d][i]) << "node " << i;
+    };
+    const Field<3> y1 = random_deformation(body, 31), y2 = random_deformation(body, 37), y3 = random_deformation(body, 41);
+    both_at(y1);
 #ifdef PD_CHUNK_WIDTH
     ASSERT_TRUE(lean.matrices_partial);
     std::size_t i0 = 0;  // a chunk node whose matrices the pass skipped (not read by a per-node kernel)
@@ -217,7 +223,7 @@ TEST(CorrespondenceReference, NodeMatricesOffGivesTheSameForcesAndMatrices)
     parallel_for(body.size(), [&](std::size_t i) {
         for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
             const int j = b.partner[k];
-            const Vec<3> Y{y.c[0][j] - y.c[0][i], y.c[1][j] - y.c[1][i], y.c[2][j] - y.c[2][i]};
+            const Vec<3> Y{y1.c[0][j] - y1.c[0][i], y1.c[1][j] - y1.c[1][i], y1.c[2][j] - y1.c[2][i]};
             const Vec<3> a = full.bond_force(i, k, j, Y), c = lean.bond_force(i, k, j, Y);
             for (int d = 0; d < 3; ++d) { fb_full.c[d][i] += a[d]; fb_lean.c[d][i] += c[d]; }
         }
@@ -225,11 +231,9 @@ TEST(CorrespondenceReference, NodeMatricesOffGivesTheSameForcesAndMatrices)
     EXPECT_FALSE(lean.matrices_partial);
     for (int d = 0; d < 3; ++d)
         for (std::size_t i = 0; i < body.size(); ++i) ASSERT_EQ(fb_lean.c[d][i], fb_full.c[d][i]) << "node " << i;
-    internal_force(lean, b, y, f_lean);
-    ASSERT_TRUE(lean.matrices_partial);
 #endif
-    const std::vector<double> W_full = full.energy_density(b, y), W_lean = lean.energy_density(b, y);  // syncs
-    EXPECT_FALSE(lean.matrices_partial);
+    both_at(y2);  // the matrices now hold y1's values
+    const std::vector<double> W_full = full.energy_density(b, y2), W_lean = lean.energy_density(b, y2);  // syncs
     double scale = 0;
     for (std::size_t i = 0; i < body.size(); ++i) scale = std::max(scale, full.sigma[i].cwiseAbs().maxCoeff());
     for (std::size_t i = 0; i < body.size(); ++i) {
@@ -240,13 +244,10 @@ TEST(CorrespondenceReference, NodeMatricesOffGivesTheSameForcesAndMatrices)
         ASSERT_NEAR(W_lean[i], W_full[i], 1e-14 * std::abs(W_full[i]) + 1e-300) << "node " << i;
     }
     // A damaged bond pass right after a lean point pass completes the per-node blocks from them.
-    internal_force(lean, b, y, f_lean);
-#ifdef PD_CHUNK_WIDTH
-    ASSERT_TRUE(lean.matrices_partial);
-#endif
+    both_at(y3);  // the matrices now hold y2's values
     b.enable_damage();
     Field<3> g;
-    bond_forces(lean, b, y, g);
+    bond_forces(lean, b, y3, g);
     double diff = 0, fmax = 0;
     for (int d = 0; d < 3; ++d)
         for (std::size_t i = 0; i < body.size(); ++i) {

@@ -69,13 +69,13 @@ inline bool translates(const Bonds& b, std::size_t t, std::size_t i, std::initia
 }  // namespace detail
 
 // The two loops of a chunked pass: chunk(q) for every chunk q, then node(i) for every node in no
-// chunk. Returns false, calling nothing, when the runs do not fit these bonds or have no chunk.
+// chunk; each in parallel when the scene has parallel_min_nodes nodes (as a loop over all nodes). Returns false, calling nothing, when the runs do not fit these bonds or have no chunk.
 template <class Chunk, class Node>
 bool for_chunks_then_rest(const StencilRuns& runs, const Bonds& b, Chunk&& chunk, Node&& node)
 {
     if (!runs.fits(b) || runs.chunk_start.empty()) return false;
-    parallel_for(runs.chunk_start.size(), [&](std::size_t q) { chunk(q); });
-    parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
+    parallel_for_items(runs.chunk_start.size(), runs.nodes, [&](std::size_t q) { chunk(q); });
+    parallel_for_items(runs.rest.size(), runs.nodes, [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
     return true;
 }
 // The same with run(p) for every run p (all chunks of the run in one call), then the rest.
@@ -83,8 +83,8 @@ template <class Run, class Node>
 bool for_runs_then_rest(const StencilRuns& runs, const Bonds& b, Run&& run, Node&& node)
 {
     if (!runs.fits(b) || runs.chunk_start.empty()) return false;
-    parallel_for(runs.run_first.size(), [&](std::size_t p) { run(p); });
-    parallel_for(runs.rest.size(), [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
+    parallel_for_items<true>(runs.run_first.size(), runs.nodes, [&](std::size_t p) { run(p); });  // runs differ in length
+    parallel_for_items(runs.rest.size(), runs.nodes, [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
     return true;
 }
 

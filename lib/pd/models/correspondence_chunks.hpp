@@ -167,7 +167,7 @@ void sync_chunk_matrices(const StencilRuns& runs, const std::vector<std::uint8_t
                          const double* soa, std::size_t n, double lambda, double G, std::vector<Mat>& F, std::vector<Mat>& A,
                          std::vector<Mat>& sigma, std::vector<Mat>& P)
 {
-    parallel_for(runs.chunk_start.size(), [&](std::size_t q) {
+    parallel_for_items(runs.chunk_start.size(), runs.nodes, [&](std::size_t q) {
         for (int l = 0; regular[q] && l < chunk_width; ++l) {
             const std::size_t i = static_cast<std::size_t>(runs.chunk_start[q] + l);
             if (copied[i]) continue;
