@@ -99,6 +99,8 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     }
     pd::LPS model({.material = cfg.material, .dim = D, .plane = cfg.plane}, bonds);
     if (cfg.model == "scf") model.apply_shear_correction(body.x);  // LPS with the shear correction factor
+    const pd::SurfaceCorrectionOptions classical{.reference = pd::SurfaceCorrectionOptions::Reference::classical};
+    if (cfg.model == "lps") pd::apply_surface_correction(model, body, bonds, cfg.surface, classical);  // none: no change
     return integrate<D>(cfg, pc, body, bonds, model, heat.get());
 }
 
@@ -114,7 +116,7 @@ int main(int argc, char** argv)
     const std::string& model = opt.add_string("model", "pmb", "material model (scf = LPS with the shear correction factor)",
                                               {"pmb", "lps", "scf", "pals", "correspondence"});
     const std::string& surface = opt.add_string("surface-correction", "none",
-                                                "surface correction of PMB (energy: Madenci-Oterkus, needs --dx)", {"none", "energy"});
+                                                "surface correction of PMB or LPS (energy: Madenci-Oterkus; PMB needs --dx)", {"none", "energy"});
     const double& hourglass = opt.add("hourglass", 0.0, "Littlewood hourglass coefficient C_hg of correspondence (source: 0.02)");
     const int& dim = opt.add_int("dim", 3, "dimension (x, then y, then z are used)");
     opt.add("K", automatic, "bulk modulus, with --G (or give --E --nu)", "Pa");
@@ -156,8 +158,8 @@ int main(int argc, char** argv)
     if (opt.given("thickness") && dim != 2) fail("option --thickness applies to --dim 2 only");
     if (opt.given("area") && dim != 1) fail("option --area applies to --dim 1 only");
     if (pv == "pa-pdlammps" && !opt.given("dx")) fail("option --partial-volume pa-pdlammps needs --dx (the lattice spacing)");
-    if (surface == "energy" && !opt.given("dx")) fail("option --surface-correction energy needs --dx (the lattice spacing)");
-    if (surface == "energy" && model != "pmb") fail("option --surface-correction energy applies to --model pmb only");
+    if (surface == "energy" && model == "pmb" && !opt.given("dx")) fail("option --surface-correction energy needs --dx (the lattice spacing)");
+    if (surface == "energy" && model != "pmb" && model != "lps") fail("option --surface-correction energy applies to --model pmb or lps only");
     const bool mechanics = mech == "on";
     if (!mechanics && heat.heat == "none") fail("option --mechanics off needs --heat agwai|correspondence");
     for (const char* name : {"E", "nu", "K", "G", "model", "hourglass", "surface-correction", "plane", "dt", "steps", "s0"})

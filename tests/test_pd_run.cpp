@@ -278,7 +278,7 @@ TEST(PdRun, BadInputsExitTwoWithOneLine)
         {in + " --E 1e9 --rho 7800", "--nu"},
         {in + steel + " --model foo", "--model"},
         {in + steel + " --model correspondence --hourglass -1", "--hourglass"},
-        {in + steel + " --model lps --surface-correction energy --dx 1e-3", "--surface-correction energy applies to --model pmb"},
+        {in + steel + " --model scf --surface-correction energy --dx 1e-3", "--surface-correction energy applies to --model pmb or lps"},
         {in + steel + " --surface-correction energy", "--surface-correction energy needs --dx"},
         {in + steel + " --partial-volume pa-pdlammps", "--dx"},
         {in + steel + " --thickness 0.1", "--thickness"},
