@@ -68,24 +68,32 @@ inline bool translates(const Bonds& b, std::size_t t, std::size_t i, std::initia
 
 }  // namespace detail
 
-// The two loops of a chunked pass: chunk(q) for every chunk q, then node(i) for every node in no
-// chunk; each in parallel when the scene has parallel_min_nodes nodes (as a loop over all nodes). Returns false, calling nothing, when the runs do not fit these bonds or have no chunk.
-template <class Chunk, class Node>
-bool for_chunks_then_rest(const StencilRuns& runs, const Bonds& b, Chunk&& chunk, Node&& node)
+namespace detail {
+// unit(u) for the n_units work units (chunks, or runs of chunks), then node(i) for every node in no
+// chunk; each loop parallel when the scene has parallel_min_nodes nodes, as a loop over all nodes.
+template <bool Uneven, class Unit, class Node>
+bool units_then_rest(const StencilRuns& runs, const Bonds& b, std::size_t n_units, Unit&& unit, Node&& node)
 {
     if (!runs.fits(b) || runs.chunk_start.empty()) return false;
-    parallel_for_items(runs.chunk_start.size(), runs.nodes, [&](std::size_t q) { chunk(q); });
+    parallel_for_items<Uneven>(n_units, runs.nodes, [&](std::size_t u) { unit(u); });
     parallel_for_items(runs.rest.size(), runs.nodes, [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
     return true;
 }
-// The same with run(p) for every run p (all chunks of the run in one call), then the rest.
+}  // namespace detail
+
+// The two loops of a chunked pass: chunk(q) for every chunk q, then node(i) for every node in no
+// chunk. Returns false, calling nothing, when the runs do not fit these bonds or have no chunk.
+template <class Chunk, class Node>
+bool for_chunks_then_rest(const StencilRuns& runs, const Bonds& b, Chunk&& chunk, Node&& node)
+{
+    return detail::units_then_rest<false>(runs, b, runs.chunk_start.size(), chunk, node);
+}
+// The same with run(p) for every run p (all chunks of the run in one call; runs differ in length,
+// so they are scheduled dynamically), then the rest.
 template <class Run, class Node>
 bool for_runs_then_rest(const StencilRuns& runs, const Bonds& b, Run&& run, Node&& node)
 {
-    if (!runs.fits(b) || runs.chunk_start.empty()) return false;
-    parallel_for_items<true>(runs.run_first.size(), runs.nodes, [&](std::size_t p) { run(p); });  // runs differ in length
-    parallel_for_items(runs.rest.size(), runs.nodes, [&](std::size_t q) { node(static_cast<std::size_t>(runs.rest[q])); });
-    return true;
+    return detail::units_then_rest<true>(runs, b, runs.run_first.size(), run, node);
 }
 
 inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer_list<const std::vector<double>*> per_bond,
