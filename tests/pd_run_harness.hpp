@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -57,5 +58,20 @@ inline Result pd_run(const std::string& tag, const std::string& args)
 }
 
 inline std::string num(double v) { return pd::io::format_double(v); }
+
+// n^3 simple cubic lattice of spacing dx; `extra(i, j, k)` appends the optional columns.
+inline std::string lattice_csv(int n, double dx, const std::string& extra_header,
+                               const std::function<std::string(int, int, int)>& extra)
+{
+    std::string s = "x,y,z,volume" + extra_header + "\n";
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                s += num((i + 0.5) * dx) + "," + num((j + 0.5) * dx) + "," + num((k + 0.5) * dx) + "," +
+                     num(dx * dx * dx) + extra(i, j, k) + "\n";
+    return s;
+}
+
+inline const std::string steel = " --E 200e9 --nu 0.25 --rho 7800";  // material options [SI]
 
 }  // namespace pd_test

@@ -24,26 +24,14 @@ using pd::io::read_csv;
 namespace {
 
 using pd_test::base;
+using pd_test::lattice_csv;
 using pd_test::num;
 using pd_test::pd_run;
 using pd_test::Result;
 using pd_test::slurp;
+using pd_test::steel;
 using pd_test::write_file;
 
-// n^3 simple cubic lattice of spacing dx; `extra(i, j, k)` appends the optional columns.
-std::string lattice_csv(int n, double dx, const std::string& extra_header,
-                        const std::function<std::string(int, int, int)>& extra)
-{
-    std::string s = "x,y,z,volume" + extra_header + "\n";
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i)
-                s += num((i + 0.5) * dx) + "," + num((j + 0.5) * dx) + "," + num((k + 0.5) * dx) + "," +
-                     num(dx * dx * dx) + extra(i, j, k) + "\n";
-    return s;
-}
-
-const std::string steel = " --E 200e9 --nu 0.25 --rho 7800";
 
 }  // namespace
 

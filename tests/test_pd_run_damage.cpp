@@ -23,9 +23,9 @@ using pd_test::num;
 using pd_test::pd_run;
 using pd_test::Result;
 using pd_test::slurp;
+using pd_test::steel;
 using pd_test::write_file;
 
-const std::string steel = " --E 200e9 --nu 0.25 --rho 7800";
 constexpr int damage_col = 10;  // node_id,x,y,z,ux,uy,uz,vx,vy,vz,damage
 
 // 1D chain of 20 nodes, dx = 1 mm, A = 1e-6 m^2 (V = 1e-9 m^3); nodes 10..19 start displaced by

@@ -15,24 +15,20 @@
 #include <string>
 
 using pd::io::read_csv;
+using pd_test::lattice_csv;
 using pd_test::num;
 using pd_test::pd_run;
 using pd_test::Result;
 using pd_test::slurp;
+using pd_test::steel;
 using pd_test::write_file;
 
 TEST(PdRun, LpsSurfaceCorrectionReachesTheModel)
 {
     const int n = 4;
     const double dx = 1e-3, eps = 1e-3;
-    std::string csv = "x,y,z,volume,ux\n";
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i)
-                csv += num((i + 0.5) * dx) + "," + num((j + 0.5) * dx) + "," + num((k + 0.5) * dx) + "," + num(dx * dx * dx) + "," +
-                       num(eps * (i + 0.5) * dx) + "\n";
-    const auto p = write_file("lps_sc.csv", csv);
-    const std::string args = "--input " + p.string() + " --E 200e9 --nu 0.25 --rho 7800 --model lps --delta 3e-3 --dt 1e-9 --steps 1";
+    const auto p = write_file("lps_sc.csv", lattice_csv(n, dx, ",ux", [&](int i, int, int) { return "," + num(eps * (i + 0.5) * dx); }));
+    const std::string args = "--input " + p.string() + steel + " --model lps --delta 3e-3 --dt 1e-9 --steps 1";
     const Result off = pd_run("lps_sc_off", args);
     const Result on = pd_run("lps_sc_on", args + " --surface-correction energy");
     ASSERT_EQ(off.status, 0) << off.err;
