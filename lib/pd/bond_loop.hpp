@@ -40,14 +40,18 @@
 // nodes with the per-node code; the split is fixed by the bonds, so results still do not depend on
 // the threads. Each lane sums its bonds in family order (not the 8 partial sums below); the
 // results differ from the per-node code's at round-off only.
-// Per-bond output (optional, for critical-micropotential damage): internal_force(model, bonds, y, f, &out)
-// also stores each intact bond's force density with both ends' states included, bond k in entry k of
-//   ordinary models:     out.c[0][k] = t_k, the bond_scalar (force on i is t_k Y)  [N/m^7 in 3D]
-//   non-ordinary models: out.c[d][k] = f_k[d]                                      [N/m^3]
-// (broken bonds: 0), out.components = 1 or D accordingly. A kernel with node_force must then also supply
+// Bond work (optional, for critical-micropotential damage, damage/micropotential.hpp):
+// internal_force(model, bonds, y, f, &work) also integrates the work of each pair's force over the
+// step, inside the force pass, for the bond k (i -> j) of the pair's lower node (j > i) only:
+//   w[k] += keep_k 1/2 (g_k + f_k) . (Y_k - Y_k^old) / volume_k  [x (r_i + r_j)/2 with per-node ratios]
+//   g_k   = f_k
+// f_k the force density on i from bond k with both ends' states included (ordinary models: g_k =
+// t_k, the bond_scalar, and f_k = t_k Y_k; non-ordinary: the D components), Y^old the positions of
+// the previous pass, keep_k = intact[k]; with y_old null the pass only stores g (the first pass).
+// A kernel with node_force must then also supply
 //   Vec<D> node_share(std::size_t i, std::int64_t k, int j) const;  // bond k's part of node_force [N/m^3]
-// and a family kernel takes the output as family_force<Damaged, true>(i, bonds, y, out.c). Without the
-// output (default) the passes compile as before (template flag Out = false): no store, no branch.
+// and a family kernel takes the work as family_force<Damaged, true>(i, bonds, y, &work). Without it
+// (default) the passes compile as before (template flag Out = false): no store, no branch.
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
 // without that array (if constexpr).
@@ -63,18 +67,26 @@
 #include "pd/chunk_simd.hpp"
 #include "pd/stencil_runs.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 namespace pd {
 
-// Per-bond force output of the bond pass (header): components arrays of bonds.size() doubles.
-struct BondForces {
-    int components = 0;                        // 1 (ordinary: t_k) or D (non-ordinary: f_k)
-    double* c[3] = {nullptr, nullptr, nullptr};
+// Bond work of the force pass (header). One record of components + 1 doubles per bond, (g, w), so
+// that the pass streams one array; it reads and writes the records of the bonds k (i -> j) with
+// j > i only, each from the thread of node i (one writer per record).
+struct BondWork {
+    int components = 0;                  // 1 (ordinary: g = t) or D (g = f)
+    double* rec = nullptr;               // per bond: g (the previous pass's on entry, this pass's on exit), w [J/m^6 in 3D]
+    const double* y_old[3] = {};         // positions of the previous pass [m]; null: store g only
+    const double* volume = nullptr;      // beta V_j per bond (Bonds::volume) [m^3]
+    const double* ratio = nullptr;       // per node J_C(theta_ref)/J_C(theta_i), or null [-]
+    double* w_max = nullptr;             // per node, out: the largest w of its bonds with j > i (lowest double: none)
 };
 
 namespace detail {
@@ -120,6 +132,27 @@ constexpr bool is_ordinary()
     else return true;
 }
 
+// Bond work of bond k (i -> j, j > i) of the force pass (header): fk = its force density times keep
+// (ordinary models: fk[0] = t, the force being t Y). Returns the bond's w.
+template <int D, bool Ordinary>
+inline double bond_work(const BondWork& o, std::size_t i, std::int64_t k, int j, const double* Y, const double* fk, double keep)
+{
+    constexpr int C = Ordinary ? 1 : D;
+    double* r = o.rec + (C + 1) * k;  // g[0 .. C), then w
+    if (o.y_old[0]) {
+        double s = 0;
+        for (int a = 0; a < D; ++a) {
+            const double Yo = o.y_old[a][j] - o.y_old[a][i];
+            s += (Ordinary ? r[0] * Yo + fk[0] * Y[a] : r[a] + fk[a]) * (Y[a] - Yo);
+        }
+        double d = 0.5 * s / o.volume[k];
+        if (o.ratio) d *= 0.5 * (o.ratio[i] + o.ratio[j]);
+        r[C] += keep * d;
+    }
+    for (int c = 0; c < C; ++c) r[c] = fk[c];
+    return r[C];
+}
+
 #ifdef PD_CHUNK_WIDTH
 // f of the W nodes i0 + l of a chunk for an ordinary model: sum over node i0's bonds k (partners
 // j + l) of t Y, with Y = y_(j + l) - y_(i0 + l) and t = model.chunk_scalar(i0, k, j, |Y|), the
@@ -144,12 +177,11 @@ void ordinary_chunk(const Model& model, const Bonds& b, int i0, const Field<D>& 
 #endif
 
 template <bool Damaged, bool Out, int D, class Model>
-void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondForces* out = nullptr)
+void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondWork* out = nullptr)
 {
-    static_assert(!Out || Damaged, "the per-bond output is for damaged scenes (micropotential)");
-    double* const* g = Out ? out->c : nullptr;
+    static_assert(!Out || Damaged, "the bond work is for damaged scenes (micropotential)");
     if constexpr (Out)
-        if (out->components != (is_ordinary<Model>() ? 1 : D)) throw std::invalid_argument("bond_pass: BondForces components do not match the model");
+        if (out->components != (is_ordinary<Model>() ? 1 : D)) throw std::invalid_argument("bond_pass: BondWork components do not match the model");
     const std::int64_t* offset = bonds.offset.data();
     const int* partner = bonds.partner.data();
     const std::uint8_t* intact = bonds.intact.data();
@@ -158,10 +190,11 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     const double* y2 = D > 2 ? y.c[2].data() : nullptr;
     auto node = [&](std::size_t i) {
         if constexpr (requires { model.template family_force<Damaged>(std::size_t{}, bonds, y); }) {
-            const Vec<D> fi = model.template family_force<Damaged, Out>(i, bonds, y, g);
+            const Vec<D> fi = model.template family_force<Damaged, Out>(i, bonds, y, out);
             for (int d = 0; d < D; ++d) f.c[d][i] = fi[d];
         } else {
             LaneSum<D> sum;
+            double w_max = std::numeric_limits<double>::lowest();  // Out: over the bonds with j > i
             const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
             for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
                 const int j = partner[k];
@@ -175,7 +208,11 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                     if constexpr (Damaged) ylen += 1.0 - keep;
                     double t = model.bond_scalar(i, k, j, ylen);
                     if constexpr (Damaged) t *= keep;
-                    if constexpr (Out) g[0][k] = t;
+                    if constexpr (Out)
+                        if (static_cast<std::size_t>(j) > i) {
+                            const double Yk[3] = {Y0, Y1, Y2};
+                            w_max = std::max(w_max, bond_work<D, true>(*out, i, k, j, Yk, &t, keep));
+                        }
                     sum.s[0][l] += t * Y0;
                     if constexpr (D > 1) sum.s[1][l] += t * Y1;
                     if constexpr (D > 2) sum.s[2][l] += t * Y2;
@@ -187,10 +224,11 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                     Vec<D> fk = model.bond_force(i, k, j, Y);  // must be finite for broken bonds too
                     if constexpr (Damaged) fk *= keep;
                     for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
-                    if constexpr (Out) {
-                        if constexpr (requires { model.node_force(i); }) fk += keep * model.node_share(i, k, j);
-                        for (int d = 0; d < D; ++d) g[d][k] = fk[d];
-                    }
+                    if constexpr (Out)
+                        if (static_cast<std::size_t>(j) > i) {
+                            if constexpr (requires { model.node_force(i); }) fk += keep * model.node_share(i, k, j);
+                            w_max = std::max(w_max, bond_work<D, false>(*out, i, k, j, Y.c.data(), fk.c.data(), keep));
+                        }
                 }
             });
             if constexpr (requires { model.node_force(i); }) {
@@ -199,6 +237,7 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
             } else {
                 for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
             }
+            if constexpr (Out) out->w_max[i] = w_max;
         }
     };
     // Chunks of translated families (stencil_runs.hpp), undamaged scenes only: W nodes per call.
@@ -217,13 +256,13 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
 }
 }  // namespace detail
 
-// The bond pass alone, with the model's state of its last point pass: f [N/m^3] and, when out is
-// given (damaged scenes only), the per-bond forces (header).
+// The bond pass alone, with the model's state of its last point pass: f [N/m^3] and, when work is
+// given (damaged scenes only), the bond work of the pass (header).
 template <int D, class Model>
-void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondForces* out = nullptr)
+void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondWork* out = nullptr)
 {
     if (f.size() != y.size()) f.resize(y.size());
-    if (out && !bonds.has_damage()) throw std::invalid_argument("bond_forces: the per-bond output needs bonds.enable_damage()");
+    if (out && !bonds.has_damage()) throw std::invalid_argument("bond_forces: the bond work needs bonds.enable_damage()");
     auto pass = [&](const auto& kernel) {
         if (out)
             detail::bond_pass<true, true>(kernel, bonds, y, f, out);
@@ -237,9 +276,9 @@ void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Fiel
     else pass(model);
 }
 
-// f: internal force density at current positions y [N/m^3]; out: optional per-bond forces (header).
+// f: internal force density at current positions y [N/m^3]; out: optional bond work (header).
 template <int D, class Model>
-void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondForces* out = nullptr)
+void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondWork* out = nullptr)
 {
     if (f.size() != y.size()) f.resize(y.size());
     if constexpr (Model::has_point_pass) model.point_pass(bonds, y);

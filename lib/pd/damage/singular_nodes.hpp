@@ -37,17 +37,20 @@ long mark_singular_nodes(const Model& model, std::size_t n, std::vector<std::uin
 }
 
 // Breaks every intact bond with a detached end, except bonds touching a no-fail node (empty: none);
-// symmetric in i, j. Returns how many ordered bonds broke.
+// symmetric in i, j: both halves of each pair of a detached node at once, so only the detached
+// nodes' families are read. Returns how many ordered bonds broke.
 inline long break_detached_bonds(Bonds& b, const std::vector<std::uint8_t>& detached, const std::vector<std::uint8_t>& no_fail)
 {
-    if (detached.empty()) return 0;
     long broken = 0;
-    for (std::size_t i = 0; i < b.nodes(); ++i) {
-        if (!no_fail.empty() && no_fail[i]) continue;
+    for (std::size_t i = 0; i < detached.size(); ++i) {
+        if (!detached[i] || (!no_fail.empty() && no_fail[i])) continue;
         for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
             const int j = b.partner[k];
-            if (!b.intact[k] || (!no_fail.empty() && no_fail[j])) continue;
-            if (detached[i] || detached[j]) { b.intact[k] = 0; ++broken; }
+            if (!no_fail.empty() && no_fail[j]) continue;
+            std::uint8_t& back = b.intact[b.reverse[k]];
+            broken += b.intact[k] + back;
+            b.intact[k] = 0;
+            back = 0;
         }
     }
     return broken;

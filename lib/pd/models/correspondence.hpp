@@ -349,10 +349,10 @@ struct Correspondence {
 #endif
 #ifdef PD_CORRESPONDENCE_AVX2
         // The whole f_i (bond_loop.hpp, family kernel), 3D, vectorised within the bond
-        // (correspondence_simd.hpp); Out: also each bond's whole force in out[d][k].
+        // (correspondence_simd.hpp); Out: also the bond work of the pass (bond_loop.hpp).
         template <bool Damaged, bool Out = false>
             requires(D == 3)
-        Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y, double* const* out = nullptr) const
+        Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y, const BondWork* out = nullptr) const
         {
             return detail::family_force_avx2<Hourglass, Damaged, Out>(*this, i, b, y, out);
         }

@@ -6,20 +6,23 @@
 //                        taken within the bond (3 broadcast xi components times 3 column loads of
 //                        the node block, 4-padded columns of A = P K^-1 then of F), transposed, and
 //                        the rest (Y, hourglass projection, division, sums) runs across 4 bonds;
-//                        Out: also each bond's whole force (A_i xi omega V_j included) in out[d][k].
+//                        Out: also the bond work (bond_loop.hpp) of the 4-bond groups holding a bond
+//                        with j > i, its force A_i xi omega V_j included (bond_work_avx2).
 //   deformation_sum_avx2 N = sum_j omega (y_j - y_i) (x) xi V_j without damage, column-major in N[9]:
 //                        each bond adds (y_j - y_i) w xi_c to column c as one 4-wide FMA (xpad, ypad:
 //                        positions 4-padded per node, 2 loads per bond).
 // Kn is Correspondence<3>::Kernel<Hourglass> (members x, wV, hg, blk, bond_force, node_share, node_force).
 #pragma once
-#include <cstddef>
-#include <new>
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <new>
 
 #if defined(__AVX2__) && defined(__FMA__)
 #include <immintrin.h>
@@ -39,18 +42,54 @@ struct Aligned64 {  // allocator of 64-byte aligned doubles (a block starts a ca
 };
 
 #ifdef PD_CORRESPONDENCE_AVX2
-// 4 x 4 transpose of the first 3 entries: r[b][d] -> out[d][b].
-inline void transpose3(const __m256d* r, __m256d* out)
+// 4 x 4 transpose, the first N rows of the result: r[b][d] -> out[d][b] for d < N.
+template <int N = 3>
+inline void transpose(const __m256d* r, __m256d* out)
 {
     const __m256d t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
     const __m256d t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
     out[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
     out[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
     out[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+    if constexpr (N == 4) out[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+}
+
+// Bond work (bond_loop.hpp) of the 4 bonds k0 ... k0 + 3 of node i (partners jj) whose lanes are set
+// in upper (j > i): fk their forces times keep, Y their deformed bonds. The arithmetic of
+// detail::bond_work on the records (g0, g1, g2, w), 4 bonds at a time (one load and one store of
+// each record); the other lanes' records are written back unchanged (one writer per record).
+// Returns w of the upper lanes, the lowest double in the others.
+inline __m256d bond_work_avx2(const BondWork& o, std::size_t i, std::int64_t k0, const int* jj, const __m256d* Y, const __m256d* fk,
+                           __m256d upper, __m256d keep)
+{
+    double* rec = o.rec + 4 * k0;
+    __m256d r[4], g[4];  // records of the 4 bonds; g[0..2] the force components, g[3] w
+    for (int q = 0; q < 4; ++q) r[q] = _mm256_loadu_pd(rec + 4 * q);
+    transpose<4>(r, g);
+    if (o.y_old[0]) {
+        __m256d s = _mm256_setzero_pd();
+        for (int d = 0; d < 3; ++d) {
+            const double* yo = o.y_old[d];
+            const __m256d Yo = _mm256_sub_pd(_mm256_set_pd(yo[jj[3]], yo[jj[2]], yo[jj[1]], yo[jj[0]]), _mm256_set1_pd(yo[i]));
+            s = _mm256_fmadd_pd(_mm256_add_pd(g[d], fk[d]), _mm256_sub_pd(Y[d], Yo), s);
+        }
+        __m256d dw = _mm256_div_pd(_mm256_mul_pd(_mm256_set1_pd(0.5), s), _mm256_loadu_pd(o.volume + k0));
+        if (o.ratio) {
+            const double* rt = o.ratio;
+            const __m256d rj = _mm256_set_pd(rt[jj[3]], rt[jj[2]], rt[jj[1]], rt[jj[0]]);
+            dw = _mm256_mul_pd(dw, _mm256_mul_pd(_mm256_set1_pd(0.5), _mm256_add_pd(_mm256_set1_pd(rt[i]), rj)));
+        }
+        g[3] = _mm256_add_pd(g[3], _mm256_and_pd(_mm256_mul_pd(keep, dw), upper));
+    }
+    for (int d = 0; d < 3; ++d) g[d] = _mm256_blendv_pd(g[d], fk[d], upper);
+    const __m256d w = _mm256_blendv_pd(_mm256_set1_pd(std::numeric_limits<double>::lowest()), g[3], upper);
+    transpose<4>(g, r);
+    for (int q = 0; q < 4; ++q) _mm256_storeu_pd(rec + 4 * q, r[q]);
+    return w;
 }
 
 template <bool Hourglass, bool Damaged, bool Out, class Kn>
-Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Field<3>& y, double* const* out)
+Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Field<3>& y, const BondWork* out)
 {
     const std::int64_t kb = b.offset[i], ke = b.offset[i + 1];
     const int* partner = b.partner.data();
@@ -63,6 +102,7 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
         Fi[d] = Hourglass ? _mm256_loadu_pd(kn.blk + correspondence_block * i + 8 * d + 4) : _mm256_setzero_pd();
         acc[0][d] = acc[1][d] = _mm256_setzero_pd();
     }
+    __m256d w_max = _mm256_set1_pd(std::numeric_limits<double>::lowest());  // Out: bond work's w over j > i
     std::int64_t k = kb;
     for (; k + lanes <= ke; k += lanes)
         for (int h = 0; h < 2; ++h) {
@@ -85,7 +125,7 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
                     g[q] = _mm256_fmadd_pd(_mm256_add_pd(Fi[2], _mm256_load_pd(Bj + 20)), e[2], g[q]);
                 }
             }
-            transpose3(a, Ax);
+            transpose(a, Ax);
             const __m256d w = _mm256_loadu_pd(kn.wV + k0);
             __m256d f[3];
             for (int d = 0; d < 3; ++d) {
@@ -93,7 +133,7 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
                 f[d] = _mm256_mul_pd(w, Ax[d]);
             }
             if constexpr (Hourglass) {
-                transpose3(g, Gx);
+                transpose(g, Gx);
                 const __m256d two = _mm256_set1_pd(2.0);
                 __m256d proj = _mm256_mul_pd(_mm256_fmsub_pd(two, Yx[0], Gx[0]), Yx[0]);
                 __m256d y2 = _mm256_mul_pd(Yx[0], Yx[0]);
@@ -112,14 +152,21 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
                 keep = _mm256_cvtepi32_pd(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(flags)));
             }
             if constexpr (Out) {
-                transpose3(o, Ox);
-                for (int d = 0; d < 3; ++d) _mm256_storeu_pd(out[d] + k0, _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], f[d]), keep));
+                const __m128i j4 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(partner + k0));
+                const __m256d upper = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpgt_epi32(j4, _mm_set1_epi32(static_cast<int>(i)))));
+                if (_mm256_movemask_pd(upper)) {  // families are sorted by partner: j < i groups skip this
+                    transpose(o, Ox);
+                    __m256d fk[3];
+                    for (int d = 0; d < 3; ++d) fk[d] = _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], f[d]), keep);
+                    w_max = _mm256_max_pd(w_max, bond_work_avx2(*out, i, k0, jj, Yx, fk, upper, keep));
+                }
             }
             if constexpr (Damaged)
                 for (int d = 0; d < 3; ++d) f[d] = _mm256_mul_pd(f[d], keep);
             for (int d = 0; d < 3; ++d) acc[h][d] = _mm256_add_pd(acc[h][d], f[d]);
         }
     LaneSum<3> sum;
+    double w_max_tail = std::numeric_limits<double>::lowest();
     for (int d = 0; d < 3; ++d) {
         _mm256_storeu_pd(sum.s[d], acc[0][d]);
         _mm256_storeu_pd(sum.s[d] + 4, acc[1][d]);
@@ -131,8 +178,17 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
         Vec<3> fk = kn.bond_force(i, k, j, Y);
         if constexpr (Damaged) fk *= static_cast<double>(b.intact[k]);
         for (int d = 0; d < 3; ++d) sum.s[d][l] += fk[d];
-        if constexpr (Out) fk += static_cast<double>(b.intact[k]) * kn.node_share(i, k, j);
-        if constexpr (Out) for (int d = 0; d < 3; ++d) out[d][k] = fk[d];
+        if constexpr (Out)
+            if (static_cast<std::size_t>(j) > i) {
+                const double keep = b.intact[k];
+                fk += keep * kn.node_share(i, k, j);
+                w_max_tail = std::max(w_max_tail, bond_work<3, false>(*out, i, k, j, Y.c.data(), fk.c.data(), keep));
+            }
+    }
+    if constexpr (Out) {
+        alignas(32) double m[4];
+        _mm256_store_pd(m, w_max);
+        out->w_max[i] = std::max({m[0], m[1], m[2], m[3], w_max_tail});
     }
     const Vec<3> fn = kn.node_force(i);
     Vec<3> r;
