@@ -1,15 +1,10 @@
 // Critical-micropotential damage (damage/micropotential.hpp) against spec/000c V8, V9 and closed forms:
 // w_C constants, the integral identity (8.14)-(8.15) by independent quadrature, the lattice sum of
-// the energy to cut a plane, w against its work sum from both ends of each pair and the same w for
-// 1 and 2 threads (every mechanical model, plastic and viscoelastic included), the PMB break strain
-// under uniform stretch (closed form, delta^{-1/2} scaling, both criteria), temperature-scaled J_C,
-// the singular-node rule and the Explicit integration of w.
+// the energy to cut a plane, the PMB break strain under uniform stretch (closed form, delta^{-1/2}
+// scaling, both criteria), temperature-scaled J_C, the singular-node rule and the Explicit
+// integration of w. The work integral of every model and the breaking test: test_micropotential_work.cpp.
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
-#include "pd/models/plastic_correspondence.hpp"
-#include "pd/models/plastic_lps.hpp"
-#include "pd/models/plastic_pals.hpp"
-#include "pd/models/viscoelastic_lps.hpp"
 #include "pd/time/verlet.hpp"
 
 #include "damage_fixtures.hpp"
@@ -17,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <random>
 
 using namespace pd;
 using namespace pd_test;
@@ -80,104 +74,6 @@ TEST(Micropotential, PlaneCutEnergyConvergesToJc)
             EXPECT_LT(std::abs(energy / Jc_si3n4 - 1), 0.005);
         }
     }
-}
-
-namespace {
-// Random loading: five random deformations in sequence, forces and increments after each. History
-// models (viscoelastic, plastic) follow Explicit's protocol (time/verlet.hpp): set_time_step(dt)
-// before the force evaluation, commit() after the increments. Returns the micropotential seen from
-// every ordered bond (work(b, k)) and, as the reference, the trapezoidal sum of the header's
-// increment for every ordered bond from its own end, with g_k from the model's public per-bond force
-// (bond_force, or bond_scalar times Y) at each deformation, not from the force pass.
-constexpr double step_s = 1e-6;  // [s]: the viscoelastic tau_b below, so the dashpot matters
-struct Loading {
-    std::vector<double> w, w_ref;
-};
-template <class Model>
-Loading random_loading(Model model, const Body<3>& body, const Bonds& b, const std::vector<double>& jc_ratio = {})
-{
-    CriticalMicropotential<3> mp;
-    mp.w_c = 1e300;  // never breaks
-    mp.jc_ratio = jc_ratio;
-    Loading out{std::vector<double>(b.size()), std::vector<double>(b.size(), 0.0)};
-    std::vector<Vec<3>> g_old(b.size()), Y_old(b.size());
-    for (unsigned s = 0; s < 5; ++s) {
-        const Field<3> y = deformed(body, 100 + s);
-        Field<3> f;
-        if constexpr (requires { model.set_time_step(step_s); }) model.set_time_step(step_s);
-        internal_force(model, b, y, f);
-        mp.accumulate(model, b, y);
-        for (std::size_t i = 0; i < body.size(); ++i)
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const int j = b.partner[k];
-                const Vec<3> Y = y[j] - y[i];
-                Vec<3> fk;
-                if constexpr (requires { model.bond_force(i, k, j, Y); }) fk = model.bond_force(i, k, j, Y);
-                else fk = model.bond_scalar(i, k, j, norm(Y)) * Y;
-                const Vec<3> g = (b.intact[k] / b.volume[k]) * fk;
-                const double r = jc_ratio.empty() ? 1.0 : 0.5 * (jc_ratio[i] + jc_ratio[j]);
-                if (s > 0) out.w_ref[k] += r * 0.5 * dot(g_old[k] + g, Y - Y_old[k]);
-                g_old[k] = g;
-                Y_old[k] = Y;
-            }
-        if constexpr (requires { model.commit(); }) model.commit();
-        if constexpr (requires { model.pts.ep_c; }) {  // the plastic models really flow
-            EXPECT_GT(*std::max_element(model.pts.ep_c.begin(), model.pts.ep_c.end()), 0.0);
-        }
-    }
-    for (std::size_t k = 0; k < b.size(); ++k) out.w[k] = mp.work(b, static_cast<std::int64_t>(k));
-    return out;
-}
-}  // namespace
-
-// Every model's w against the reference sum from both ends of each pair (so w_ij = w_ji within
-// round-off of the two ends' forces), and the same w for 1 and 2 threads, bit for bit (body above
-// parallel_min_nodes). Tolerance 1e-12 of the largest w: the force pass and the public per-bond
-// functions add the same terms in different orders (measured: 4e-16 for the correspondence models,
-// up to 2.7e-13 for LPS, whose bond_scalar regroups the node terms; printed by the test).
-TEST(Micropotential, MatchesTheWorkSumFromBothEndsAndIsThreadIndependent)
-{
-    auto body = box<3>({{0, 0, 0}}, {{14 * dx, 13 * dx, 12 * dx}}, dx);
-    ASSERT_GE(body.size(), static_cast<std::size_t>(parallel_min_nodes));
-    Bonds b = build_bonds(body, m_ratio * dx);
-    b.enable_damage();
-    for (std::size_t k = 0; k < b.size(); k += 7) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
-    auto check = [&](auto model, const char* name, const std::vector<double>& ratio = {}) {
-        set_threads(1);
-        const Loading one = random_loading(model, body, b, ratio);
-        set_threads(2);
-        const Loading two = random_loading(model, body, b, ratio);
-        set_threads(0);
-        EXPECT_EQ(one.w, two.w) << name;
-        double wmax = 0, err = 0;
-        for (std::size_t k = 0; k < b.size(); ++k) {
-            wmax = std::max(wmax, std::abs(one.w_ref[k]));
-            err = std::max(err, std::abs(one.w[k] - one.w_ref[k]));
-            if (!b.intact[k]) {
-                ASSERT_EQ(one.w[k], 0.0) << name << " broken bond " << k;
-            }
-        }
-        EXPECT_GT(wmax, 0.0) << name;
-        EXPECT_LT(err, 1e-12 * wmax) << name;
-        std::printf("%-28s largest w %.3e J/m^6, largest difference from the reference %.2e of it\n", name, wmax, err / wmax);
-    };
-    std::vector<double> ratio(body.size());
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> u(0.5, 2.0);
-    for (double& r : ratio) r = u(rng);
-    check(make_corr<3>(0.02)(body, b), "correspondence");
-    check(make_corr<3>(0.0)(body, b), "correspondence, no hourglass");
-    check(make_corr<3>(0.02)(body, b), "correspondence, J_C ratios", ratio);
-    check(make_lps(3, LPS::Params::WeightedVolume::intact, false)(body, b), "LPS");
-    check(make_lps(3, LPS::Params::WeightedVolume::intact, false)(body, b), "LPS, J_C ratios", ratio);
-    check(make_pals(body, b), "PALS");
-    // History models: yield at strain A/(3G) ~ 2e-7 (every node flows under the 1e-3 loading);
-    // viscoelastic LPS with tau_b = the step, gamma_b = 1.
-    const laws::JohnsonCook law{.A = 5e4, .B = 1e8, .n = 0.71};
-    check(PlasticLPS({.material = steel, .dim = 3}, b, law), "plastic LPS");
-    check(PlasticPALS({.material = steel}, body, b, law), "plastic PALS");
-    check(PlasticCorrespondence({steel, Correspondence<3>::Law::linear, 0.02}, body, b, law), "plastic correspondence");
-    check(ViscoelasticLPS({{.material = steel, .dim = 3}, 1.0, step_s}, b), "viscoelastic LPS");
 }
 
 namespace {

@@ -35,7 +35,7 @@
 //        // bond_scalar of bond k of node i0 (partner j) for the W lanes i0 + l (partners j + l)
 // or
 //   void run_force(int p, const Bonds&, const Field<D>& y, Field<D>& f) const;  // f of the nodes of run p's chunks
-// In undamaged scenes without per-bond output the bond pass then takes the chunks W nodes at a
+// In undamaged scenes (so without bond work) the bond pass then takes the chunks W nodes at a
 // time (node j's values as contiguous vectors, per-bond data as node i0's scalars) and the other
 // nodes with the per-node code; the split is fixed by the bonds, so results still do not depend on
 // the threads. Each lane sums its bonds in family order (not the 8 partial sums below); the

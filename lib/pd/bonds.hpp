@@ -28,13 +28,18 @@ struct Bonds {
     std::vector<double> volume;       // beta V_j, partner volume seen from i [m^3]
     std::vector<std::int64_t> reverse;  // index of bond j->i
     std::vector<std::uint8_t> intact;   // 1 intact, 0 broken; empty when the scene has no damage
+    bool damage = false;                // enable_damage() was called (so also for a body without bonds)
 
     std::size_t nodes() const { return offset.empty() ? 0 : offset.size() - 1; }
     std::size_t size() const { return partner.size(); }  // ordered pairs i->j
     std::int64_t begin(std::size_t i) const { return offset[i]; }
     std::int64_t end(std::size_t i) const { return offset[i + 1]; }
-    bool has_damage() const { return !intact.empty(); }
-    void enable_damage() { intact.assign(size(), 1); }
+    bool has_damage() const { return damage; }
+    void enable_damage()
+    {
+        intact.assign(size(), 1);
+        damage = true;
+    }
 };
 
 struct BondOptions {

@@ -85,7 +85,7 @@ struct CriticalMicropotential {
     // in the last force pass (w_max, bond_loop.hpp); detached nodes as for critical stretch.
     long apply(Bonds& b)
     {
-        if (rec_.size() != stride() * b.size()) return 0;  // nothing accumulated yet
+        if (w_max_.size() != b.nodes() || rec_.size() != stride() * b.size()) return 0;  // no pass yet
         long broken = break_detached_bonds(b, detached, no_fail);
         const long n = static_cast<long>(b.nodes());
 #pragma omp parallel for schedule(static) reduction(+ : broken) if (n >= parallel_min_nodes)

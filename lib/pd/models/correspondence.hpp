@@ -299,7 +299,7 @@ struct Correspondence {
             for (int d = 0; d < D; ++d) f[d] = f_own[d][i];
             return f;
         }
-        // Bond k's part of node_force, omega V_j P_i K_i^-1 xi [N/m^3] (per-bond output, bond_loop.hpp).
+        // Bond k's part of node_force, omega V_j P_i K_i^-1 xi [N/m^3] (bond work, bond_loop.hpp).
         Vec<D> node_share(std::size_t i, std::int64_t k, int j) const
         {
             Vec<D> f;  // zero

@@ -250,7 +250,7 @@ private:
                     }
                 model.update_stress(bonds, y_mid_, v_step_, dt);
             }
-        if (micropotential) {  // the force pass hands its per-bond forces to the increments
+        if (micropotential) {  // the force pass adds the step's increments (bond work, bond_loop.hpp)
             internal_force(model, bonds, y_, f_, micropotential->template bond_work<Model>(bonds));
             micropotential->accumulate(model, bonds, y_);
         } else {

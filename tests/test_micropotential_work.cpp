@@ -1,0 +1,182 @@
+// Critical-micropotential damage (damage/micropotential.hpp), the work integral and the breaking
+// test: w of every mechanical model (elastic, plastic, viscoelastic; 3D correspondence on its AVX2
+// path with and without hourglass control, and with per-node J_C ratios) against the trapezoidal
+// work sum from both ends of each pair, pairs broken during the loading included; the same w for 1
+// and 2 threads; apply() breaks exactly the pairs at or above w_C (correspondence); a body without
+// bonds runs. Closed forms and constants: test_micropotential.cpp.
+#include "pd/damage/micropotential.hpp"
+#include "pd/models/plastic_correspondence.hpp"
+#include "pd/models/plastic_lps.hpp"
+#include "pd/models/plastic_pals.hpp"
+#include "pd/models/viscoelastic_lps.hpp"
+#include "pd/time/verlet.hpp"
+
+#include "damage_fixtures.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <random>
+
+using namespace pd;
+using namespace pd_test;
+
+namespace {
+constexpr double step_s = 1e-6;  // [s]: the viscoelastic tau_b below, so the dashpot matters
+
+struct Loading {
+    std::vector<double> w, w_ref;  // per ordered bond: work(b, k), and the reference from bond k's own end
+};
+
+// Random loading: five random deformations in sequence, forces and increments after each; before
+// the third, every 11th pair breaks (both halves), so its w must stay where it was. History models
+// (viscoelastic, plastic) follow Explicit's protocol (time/verlet.hpp): set_time_step(dt) before the
+// force evaluation, commit() after the increments. The reference is the header's trapezoidal sum
+// for every ordered bond from its own end, with g_k from the model's public per-bond force
+// (bond_force, or bond_scalar times Y) at each deformation, not from the force pass. b's intact
+// flags are as before on return.
+template <class Model>
+Loading random_loading(Model model, const Body<3>& body, Bonds& b, CriticalMicropotential<3>& mp)
+{
+    const std::vector<std::uint8_t> intact = b.intact;
+    Loading out{std::vector<double>(b.size()), std::vector<double>(b.size(), 0.0)};
+    std::vector<Vec<3>> g_old(b.size()), Y_old(b.size());
+    for (unsigned s = 0; s < 5; ++s) {
+        if (s == 2) {
+            for (std::size_t k = 0; k < b.size(); k += 11) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+            if constexpr (requires { model.recompute(b); }) model.recompute(b);
+        }
+        const Field<3> y = deformed(body, 100 + s);
+        Field<3> f;
+        if constexpr (requires { model.set_time_step(step_s); }) model.set_time_step(step_s);
+        internal_force(model, b, y, f);
+        mp.accumulate(model, b, y);
+        for (std::size_t i = 0; i < body.size(); ++i)
+            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                const int j = b.partner[k];
+                const Vec<3> Y = y[j] - y[i];
+                Vec<3> fk;
+                if constexpr (requires { model.bond_force(i, k, j, Y); }) fk = model.bond_force(i, k, j, Y);
+                else fk = model.bond_scalar(i, k, j, norm(Y)) * Y;
+                const Vec<3> g = (b.intact[k] / b.volume[k]) * fk;
+                const double r = mp.jc_ratio.empty() ? 1.0 : 0.5 * (mp.jc_ratio[i] + mp.jc_ratio[j]);
+                if (s > 0) out.w_ref[k] += b.intact[k] * r * 0.5 * dot(g_old[k] + g, Y - Y_old[k]);
+                g_old[k] = g;
+                Y_old[k] = Y;
+            }
+        if constexpr (requires { model.commit(); }) model.commit();
+        if constexpr (requires { model.pts.ep_c; }) {  // the plastic models really flow
+            EXPECT_GT(*std::max_element(model.pts.ep_c.begin(), model.pts.ep_c.end()), 0.0);
+        }
+    }
+    for (std::size_t k = 0; k < b.size(); ++k) out.w[k] = mp.work(b, static_cast<std::int64_t>(k));
+    b.intact = intact;
+    return out;
+}
+
+Body<3> loaded_box()  // above parallel_min_nodes, so that 2 threads really split the nodes
+{
+    return box<3>({{0, 0, 0}}, {{14 * dx, 13 * dx, 12 * dx}}, dx);
+}
+
+Bonds cut_bonds(const Body<3>& body)  // every 7th pair broken from the start
+{
+    Bonds b = build_bonds(body, m_ratio * dx);
+    b.enable_damage();
+    for (std::size_t k = 0; k < b.size(); k += 7) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+    return b;
+}
+}  // namespace
+
+// Every model's w against the reference sum from both ends of each pair (so w_ij = w_ji within
+// round-off of the two ends' forces), and the same w for 1 and 2 threads, bit for bit. Tolerance
+// 1e-12 of the largest w: the force pass and the public per-bond functions add the same terms in
+// different orders (measured: 4e-16 for the correspondence models, up to 2.7e-13 for LPS, whose
+// bond_scalar regroups the node terms; printed by the test).
+TEST(Micropotential, MatchesTheWorkSumFromBothEndsAndIsThreadIndependent)
+{
+    const auto body = loaded_box();
+    ASSERT_GE(body.size(), static_cast<std::size_t>(parallel_min_nodes));
+    Bonds b = cut_bonds(body);
+    std::vector<double> ratio(body.size());
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0.5, 2.0);
+    for (double& r : ratio) r = u(rng);
+    auto check = [&](auto model, const char* name, bool scaled = false) {
+        Loading run[2];
+        for (int t = 0; t < 2; ++t) {
+            set_threads(t + 1);
+            CriticalMicropotential<3> mp;
+            if (scaled) mp.jc_ratio = ratio;
+            run[t] = random_loading(model, body, b, mp);
+        }
+        set_threads(0);
+        EXPECT_EQ(run[0].w, run[1].w) << name;
+        double wmax = 0, err = 0;
+        for (std::size_t k = 0; k < b.size(); ++k) {
+            wmax = std::max(wmax, std::abs(run[0].w_ref[k]));
+            err = std::max(err, std::abs(run[0].w[k] - run[0].w_ref[k]));
+            if (!b.intact[k]) {
+                ASSERT_EQ(run[0].w[k], 0.0) << name << " broken bond " << k;
+            }
+        }
+        EXPECT_GT(wmax, 0.0) << name;
+        EXPECT_LT(err, 1e-12 * wmax) << name;
+        std::printf("%-28s largest w %.3e J/m^6, largest difference from the reference %.2e of it\n", name, wmax, err / wmax);
+    };
+    check(make_corr<3>(0.02)(body, b), "correspondence");
+    check(make_corr<3>(0.0)(body, b), "correspondence, no hourglass");
+    check(make_corr<3>(0.02)(body, b), "correspondence, J_C ratios", true);
+    check(make_lps(3, LPS::Params::WeightedVolume::intact, false)(body, b), "LPS");
+    check(make_lps(3, LPS::Params::WeightedVolume::intact, false)(body, b), "LPS, J_C ratios", true);
+    check(make_pals(body, b), "PALS");
+    // History models: yield at strain A/(3G) ~ 2e-7 (every node flows under the 1e-3 loading);
+    // viscoelastic LPS with tau_b = the step, gamma_b = 1.
+    const laws::JohnsonCook law{.A = 5e4, .B = 1e8, .n = 0.71};
+    check(PlasticLPS({.material = steel, .dim = 3}, b, law), "plastic LPS");
+    check(PlasticPALS({.material = steel}, body, b, law), "plastic PALS");
+    check(PlasticCorrespondence({steel, Correspondence<3>::Law::linear, 0.02}, body, b, law), "plastic correspondence");
+    check(ViscoelasticLPS({{.material = steel, .dim = 3}, 1.0, step_s}, b), "viscoelastic LPS");
+}
+
+// With w_C at the median w of the intact bonds, apply() breaks exactly the intact bonds whose pair
+// has w >= w_C, both halves, and returns their number (correspondence: the per-node largest w that
+// lets apply skip nodes comes from the AVX2 kernel and its scalar tail).
+TEST(Micropotential, BreaksExactlyThePairsAtOrAboveCritical)
+{
+    const auto body = loaded_box();
+    Bonds b = cut_bonds(body);
+    CriticalMicropotential<3> mp;
+    mp.w_c = 1e300;
+    const Loading run = random_loading(make_corr<3>(0.02)(body, b), body, b, mp);
+    std::vector<double> w;
+    for (std::size_t k = 0; k < b.size(); ++k)
+        if (b.intact[k]) w.push_back(run.w[k]);
+    std::nth_element(w.begin(), w.begin() + w.size() / 2, w.end());
+    mp.w_c = w[w.size() / 2];
+    const std::vector<std::uint8_t> before = b.intact;
+    long expected = 0;
+    for (std::size_t k = 0; k < b.size(); ++k) expected += before[k] && run.w[k] >= mp.w_c;
+    ASSERT_GT(expected, 0);
+    EXPECT_EQ(mp.apply(b), expected);
+    for (std::size_t k = 0; k < b.size(); ++k) {
+        ASSERT_EQ(b.intact[k], before[k] && run.w[k] < mp.w_c) << "bond " << k;
+    }
+}
+
+// A body whose horizon holds no partner: Explicit's first apply() (before any force pass) and the
+// steps run without reading per-node data that does not exist yet.
+TEST(Micropotential, BodyWithoutBondsRuns)
+{
+    const auto body = box<3>({{0, 0, 0}}, {{2 * dx, 2 * dx, 2 * dx}}, dx);
+    Bonds b = build_bonds(body, 0.5 * dx);
+    ASSERT_EQ(b.size(), 0u);
+    b.enable_damage();
+    PMB pmb({steel, 3}, Influence{}, b);
+    CriticalMicropotential<3> mp;
+    mp.w_c = 1.0;
+    Explicit<3, PMB> ex(body, b, pmb, 7850);
+    ex.micropotential = &mp;
+    ex.start();
+    for (int n = 0; n < 3; ++n) ex.step(1e-8);
+    EXPECT_EQ(ex.broken_bonds, 0);
+}
