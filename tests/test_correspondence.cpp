@@ -217,7 +217,7 @@ TEST(Correspondence, OneAndTwoThreadsBitIdentical)
     ASSERT_GE(body.size(), static_cast<std::size_t>(parallel_min_nodes));
     Bonds b = build_bonds(body, m_ratio * dx);
     b.enable_damage();
-    for (std::size_t k = 0; k < b.size(); k += 7) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+    for (std::size_t k = 0; k < b.size(); k += 7) b.break_pair(k);
     C3 model({steel, C3::Law::linear, 0.02}, body, b);
     std::mt19937 gen(3);
     std::uniform_real_distribution<double> U(-1e-5, 1e-5);

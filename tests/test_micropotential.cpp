@@ -152,7 +152,7 @@ TEST(Micropotential, SingularCorrespondenceNodeIsDetached)
     int kept = 0;
     for (std::int64_t k = b.begin(lonely); k < b.end(lonely); ++k)
         if (kept < 2) ++kept;
-        else { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+        else b.break_pair(k);
     auto model = make_corr<3>(0.0)(body, b);
     CriticalMicropotential<3> mp;
     mp.w_c = 1e300;

@@ -42,7 +42,7 @@ Loading random_loading(Model model, const Body<3>& body, Bonds& b, CriticalMicro
     std::vector<Vec<3>> g_old(b.size()), Y_old(b.size());
     for (unsigned s = 0; s < 5; ++s) {
         if (s == 2) {
-            for (std::size_t k = 0; k < b.size(); k += 11) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+            for (std::size_t k = 0; k < b.size(); k += 11) b.break_pair(k);
             if constexpr (requires { model.recompute(b); }) model.recompute(b);
         }
         const Field<3> y = deformed(body, 100 + s);
@@ -82,7 +82,7 @@ Bonds cut_bonds(const Body<3>& body)  // every 7th pair broken from the start
 {
     Bonds b = build_bonds(body, m_ratio * dx);
     b.enable_damage();
-    for (std::size_t k = 0; k < b.size(); k += 7) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+    for (std::size_t k = 0; k < b.size(); k += 7) b.break_pair(k);
     return b;
 }
 }  // namespace

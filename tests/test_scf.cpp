@@ -199,7 +199,7 @@ TEST(SCF, DamageAndThreads)
     EXPECT_EQ(shear_correction_factor(b, body.x, 3), s1);
     const int mid = 7 + 7 * 14 + 7 * 196;
     for (std::int64_t k = b.begin(mid); k < b.end(mid); ++k)
-        if (body.x.c[0][b.partner[k]] > body.x.c[0][mid]) { b.intact[k] = 0; b.intact[b.reverse[k]] = 0; }
+        if (body.x.c[0][b.partner[k]] > body.x.c[0][mid]) b.break_pair(k);
     EXPECT_GT(shear_correction_factor(b, body.x, 3)[mid], s1[mid]);
     EXPECT_THROW(shear_correction_factor(b, body.x, 2), std::invalid_argument);  // dim != D
 }

@@ -48,6 +48,8 @@
 // f_k the force density on i from bond k with both ends' states included (ordinary models: g_k =
 // t_k, the bond_scalar, and f_k = t_k Y_k; non-ordinary: the D components), Y^old the positions of
 // the previous pass, keep_k = intact[k]; with y_old null the pass only stores g (the first pass).
+// It also sets w_max[i], the largest w of node i's bonds with j > i, so that the breaking test
+// skips the nodes below w_C without reading their bonds.
 // A kernel with node_force must then also supply
 //   Vec<D> node_share(std::size_t i, std::int64_t k, int j) const;  // bond k's part of node_force [N/m^3]
 // and a family kernel takes the work as family_force<Damaged, true>(i, bonds, y, &work). Without it

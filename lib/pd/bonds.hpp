@@ -35,6 +35,15 @@ struct Bonds {
     std::int64_t begin(std::size_t i) const { return offset[i]; }
     std::int64_t end(std::size_t i) const { return offset[i + 1]; }
     bool has_damage() const { return damage; }
+    // Breaks both halves of bond k's pair; returns how many of them were intact (0, 1 or 2).
+    int break_pair(std::int64_t k)
+    {
+        std::uint8_t& back = intact[reverse[k]];
+        const int was = intact[k] + back;
+        intact[k] = 0;
+        back = 0;
+        return was;
+    }
     void enable_damage()
     {
         intact.assign(size(), 1);

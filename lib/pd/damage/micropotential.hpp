@@ -94,11 +94,7 @@ struct CriticalMicropotential {
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
                 const int j = b.partner[k];
                 if (j < i || (!no_fail.empty() && no_fail[j]) || w_of(k) < w_c) continue;
-                // the reverse half lies in node j's range, whose thread writes only its bonds to j' > j
-                std::uint8_t& back = b.intact[b.reverse[k]];
-                broken += b.intact[k] + back;
-                b.intact[k] = 0;
-                back = 0;
+                broken += b.break_pair(k);  // the reverse half lies in node j's range, whose thread writes only its bonds to j' > j
             }
         }
         return broken;

@@ -47,10 +47,7 @@ inline long break_detached_bonds(Bonds& b, const std::vector<std::uint8_t>& deta
         for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
             const int j = b.partner[k];
             if (!no_fail.empty() && no_fail[j]) continue;
-            std::uint8_t& back = b.intact[b.reverse[k]];
-            broken += b.intact[k] + back;
-            b.intact[k] = 0;
-            back = 0;
+            broken += b.break_pair(k);
         }
     }
     return broken;
