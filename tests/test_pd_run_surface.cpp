@@ -15,13 +15,7 @@
 #include <string>
 
 using pd::io::read_csv;
-using pd_test::lattice_csv;
-using pd_test::num;
-using pd_test::pd_run;
-using pd_test::Result;
-using pd_test::slurp;
-using pd_test::steel;
-using pd_test::write_file;
+using namespace pd_test;  // the harness: pd_run, lattice_csv, write_file, steel, ...
 
 TEST(PdRun, LpsSurfaceCorrectionReachesTheModel)
 {
