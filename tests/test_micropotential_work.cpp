@@ -1,9 +1,9 @@
 // Critical-micropotential damage (damage/micropotential.hpp), the work integral and the breaking
 // test: w of every mechanical model (elastic, plastic, viscoelastic; 3D correspondence on its AVX2
-// path with and without hourglass control, and with per-node J_C ratios) against the trapezoidal
-// work sum from both ends of each pair, pairs broken during the loading included; the same w for 1
-// and 2 threads; apply() breaks exactly the pairs at or above w_C (correspondence); a body without
-// bonds runs. Closed forms and constants: test_micropotential.cpp.
+// path with and without hourglass control, with the hourglass work left out, and with per-node J_C
+// ratios) against the trapezoidal work sum from both ends of each pair, pairs broken during the
+// loading included; the same w for 1 and 2 threads; apply() breaks exactly the pairs at or above w_C
+// (correspondence); a body without bonds runs. Closed forms and constants: test_micropotential.cpp.
 #include "pd/damage/micropotential.hpp"
 #include "pd/models/plastic_correspondence.hpp"
 #include "pd/models/plastic_lps.hpp"
@@ -32,10 +32,11 @@ struct Loading {
 // (viscoelastic, plastic) follow Explicit's protocol (time/verlet.hpp): set_time_step(dt) before the
 // force evaluation, commit() after the increments. The reference is the header's trapezoidal sum
 // for every ordered bond from its own end, with g_k from the model's public per-bond force
-// (bond_force, or bond_scalar times Y) at each deformation, not from the force pass. b's intact
+// (bond_force, or bond_scalar times Y) at each deformation, not from the force pass; with
+// `reference` given, from that model's instead, evaluated at the same deformations. b's intact
 // flags are as before on return.
 template <class Model>
-Loading random_loading(Model model, const Body<3>& body, Bonds& b, CriticalMicropotential<3>& mp)
+Loading random_loading(Model model, const Body<3>& body, Bonds& b, CriticalMicropotential<3>& mp, Correspondence<3>* reference = nullptr)
 {
     const std::vector<std::uint8_t> intact = b.intact;
     Loading out{std::vector<double>(b.size()), std::vector<double>(b.size(), 0.0)};
@@ -50,12 +51,14 @@ Loading random_loading(Model model, const Body<3>& body, Bonds& b, CriticalMicro
         if constexpr (requires { model.set_time_step(step_s); }) model.set_time_step(step_s);
         internal_force(model, b, y, f);
         mp.accumulate(model, b, y);
+        if (reference) internal_force(*reference, b, y, f);
         for (std::size_t i = 0; i < body.size(); ++i)
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
                 const int j = b.partner[k];
                 const Vec<3> Y = y[j] - y[i];
                 Vec<3> fk;
-                if constexpr (requires { model.bond_force(i, k, j, Y); }) fk = model.bond_force(i, k, j, Y);
+                if (reference) fk = reference->bond_force(i, k, j, Y);
+                else if constexpr (requires { model.bond_force(i, k, j, Y); }) fk = model.bond_force(i, k, j, Y);
                 else fk = model.bond_scalar(i, k, j, norm(Y)) * Y;
                 const Vec<3> g = (b.intact[k] / b.volume[k]) * fk;
                 const double r = mp.jc_ratio.empty() ? 1.0 : 0.5 * (mp.jc_ratio[i] + mp.jc_ratio[j]);
@@ -101,13 +104,14 @@ TEST(Micropotential, MatchesTheWorkSumFromBothEndsAndIsThreadIndependent)
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0.5, 2.0);
     for (double& r : ratio) r = u(rng);
-    auto check = [&](auto model, const char* name, bool scaled = false) {
+    auto check = [&](auto model, const char* name, bool scaled = false, Correspondence<3>* reference = nullptr) {
         Loading run[2];
         for (int t = 0; t < 2; ++t) {
             set_threads(t + 1);
             CriticalMicropotential<3> mp;
             if (scaled) mp.jc_ratio = ratio;
-            run[t] = random_loading(model, body, b, mp);
+            mp.hourglass_work = reference == nullptr;
+            run[t] = random_loading(model, body, b, mp, reference);
         }
         set_threads(0);
         EXPECT_EQ(run[0].w, run[1].w) << name;
@@ -126,6 +130,10 @@ TEST(Micropotential, MatchesTheWorkSumFromBothEndsAndIsThreadIndependent)
     check(make_corr<3>(0.02)(body, b), "correspondence");
     check(make_corr<3>(0.0)(body, b), "correspondence, no hourglass");
     check(make_corr<3>(0.02)(body, b), "correspondence, J_C ratios", true);
+    // Peridigm's w (hourglass_work = false): the work of the forces without the hourglass term, which
+    // are the forces of the same model with C_hg = 0 at the same deformations.
+    Correspondence<3> no_hourglass = make_corr<3>(0.0)(body, b);
+    check(make_corr<3>(0.02)(body, b), "correspondence, w without hourglass", false, &no_hourglass);
     check(make_lps(3, LPS::Params::WeightedVolume::intact, false)(body, b), "LPS");
     check(make_lps(3, LPS::Params::WeightedVolume::intact, false)(body, b), "LPS, J_C ratios", true);
     check(make_pals(body, b), "PALS");

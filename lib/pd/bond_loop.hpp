@@ -52,7 +52,10 @@
 // skips the nodes below w_C without reading their bonds.
 // A kernel with node_force must then also supply
 //   Vec<D> node_share(std::size_t i, std::int64_t k, int j) const;  // bond k's part of node_force [N/m^3]
-// and a family kernel takes the work as family_force<Damaged, true>(i, bonds, y, &work). Without it
+// A kernel may also supply
+//   Vec<D> hourglass_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const;  // part of bond_force [N/m^3]
+// which the work leaves out when work.hourglass is false (Peridigm's micropotential, 000c sec. 2.3).
+// A family kernel takes the work as family_force<Damaged, true>(i, bonds, y, &work). Without it
 // (default) the passes compile as before (template flag Out = false): no store, no branch.
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
@@ -89,6 +92,7 @@ struct BondWork {
     const double* volume = nullptr;      // beta V_j per bond (Bonds::volume) [m^3]
     const double* ratio = nullptr;       // per node J_C(theta_ref)/J_C(theta_i), or null [-]
     double* w_max = nullptr;             // per node, out: the largest w of its bonds with j > i (lowest double: none)
+    bool hourglass = true;               // f_k with the kernel's hourglass_force, if it has one (false: without)
 };
 
 namespace detail {
@@ -229,6 +233,8 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                     if constexpr (Out)
                         if (static_cast<std::size_t>(j) > i) {
                             if constexpr (requires { model.node_force(i); }) fk += keep * model.node_share(i, k, j);
+                            if constexpr (requires { model.hourglass_force(i, k, j, Y); })
+                                if (!out->hourglass) fk -= keep * model.hourglass_force(i, k, j, Y);
                             w_max = std::max(w_max, bond_work<D, false>(*out, i, k, j, Y.c.data(), fk.c.data(), keep));
                         }
                 }

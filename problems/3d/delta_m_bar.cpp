@@ -12,7 +12,9 @@
 // Default: delta 0.38 and 0.61 mm at m = 3.05 and the delta = 0.61 mm row for every m (6 cells);
 // --full: all 20 cells (problems/cases.txt); --quick: delta 0.61 mm, m 3.05 only.
 // Run: delta_m_bar_3d [--deltas ...] [--ms ...] [--full] [--E --nu --rho --Gc --C-hg --rate --dt-factor]
-//   [--quick] [--check] [--out DIR]
+//   [--no-hourglass-work] [--quick] [--check] [--out DIR]
+// --no-hourglass-work: the micropotential leaves out the work of the hourglass forces, as Peridigm's
+// (000c sec. 2.3 [CODE]); the default includes them (the work of the whole bond force).
 // Writes: fracture_times.csv (delta, m, criterion, ours, published, quasi-static, wall), summary.csv, params.csv.
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
@@ -53,7 +55,7 @@ double published(double delta, double m, bool micro)
     return NAN;
 }
 
-struct Material { pd::Elastic mat; double rho, Gc, C_hg, rate, dt_factor; };
+struct Material { pd::Elastic mat; double rho, Gc, C_hg, rate, dt_factor; bool hourglass_work; };
 
 // One cell: returns the time of the first broken bond [s] (NAN if none by 100 us) and the wall time.
 std::pair<double, double> fracture_time(const Material& p, double delta, double m, bool micro)
@@ -82,6 +84,7 @@ std::pair<double, double> fracture_time(const Material& p, double delta, double 
     pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(p.Gc, p.mat, delta), .s0_bond = {}, .no_fail = {}};
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(p.Gc, delta);
+    mp.hourglass_work = p.hourglass_work;
     cs.protect(protect, body.size());
     mp.protect(protect, body.size());
     if (micro) ex.micropotential = &mp;
@@ -109,6 +112,7 @@ int run(int argc, char** argv)
     opt.add("rho", 3200, "density (assumed)", "kg/m^3");
     opt.add("Gc", 109.94, "fracture energy G_c = J_C", "J/m^2");
     opt.add("C-hg", 0.02, "hourglass coefficient (assumed)", "-");
+    opt.add_flag("no-hourglass-work", "micropotential without the work of the hourglass forces (Peridigm's)");
     opt.add("rate", 20, "engineering strain rate", "1/s");
     opt.add("dt-factor", 0.5, "safety factor on the Silling-Askari step", "-");
     pd::io::add_standard(opt, "reports/3d/delta_m_bar");
@@ -137,7 +141,7 @@ int run(int argc, char** argv)
     const std::string out = opt.get_string("out");
     opt.save_csv(out + "/params.csv");
     const Material p{pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu")), opt.get("rho"), opt.get("Gc"), opt.get("C-hg"),
-                     opt.get("rate"), opt.get("dt-factor")};
+                     opt.get("rate"), opt.get("dt-factor"), !opt.get_flag("no-hourglass-work")};
 
     // 2-5. Every cell, both criteria.
     pd::io::Checks check;

@@ -8,8 +8,9 @@
 // Increment of bond k = i->j over a step n -> n+1 (trapezoidal rule on the work integral):
 //   d_k = 1/2 (g_k^n + g_k^{n+1}) . (Y_k^{n+1} - Y_k^n),   g_k = f_k / (beta V_j)  [N/m^6]
 // with f_k the pair force density on i from bond k, both ends' states included (non-ordinary
-// models such as correspondence: with the hourglass term; Peridigm leaves hourglass forces out,
-// 000c sec. 2.3 [CODE]). For PMB this integrates exactly to w = c omega s^2 |xi| / 2.
+// models such as correspondence: with the hourglass term by default; `hourglass_work = false`
+// leaves it out, as Peridigm does, 000c sec. 2.3 [CODE]). For PMB this integrates exactly to
+// w = c omega s^2 |xi| / 2.
 // Since f_ji / (beta V_i) = -f_ij / (beta V_j) and Y_ji = -Y_ij, d_ij = d_ji up to round-off: each
 // pair has ONE w, computed by its lower node i < j and kept on the bond i -> j (work(b, k) reads it
 // from either half), so w_ij == w_ji by construction, whatever the number of threads (each entry
@@ -62,6 +63,7 @@ struct CriticalMicropotential {
     std::vector<std::uint8_t> no_fail;   // per node, 1 = bonds never break; empty = none
     std::vector<double> jc_ratio;        // per node J_C(theta_ref)/J_C(theta_i) [-]; empty = 1
     bool detach_singular = true;         // the singular-node rule (header), for models with Kinv and F
+    bool hourglass_work = true;          // w includes the work of hourglass forces (false: Peridigm's w)
     std::vector<std::uint8_t> detached;  // per node, 1 = all bonds break at the next apply
     long detached_nodes = 0;             // nodes detached so far by the singular rule
 
@@ -118,6 +120,7 @@ struct CriticalMicropotential {
         for (int a = 0; a < D; ++a) work_.y_old[a] = first ? nullptr : y_.c[a].data();
         work_.volume = b.volume.data();
         work_.ratio = jc_ratio.empty() ? nullptr : jc_ratio.data();
+        work_.hourglass = hourglass_work;
         handed_out_ = true;
         return &work_;
     }

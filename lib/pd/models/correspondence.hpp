@@ -20,11 +20,10 @@
 // A node whose K is singular (fewer than D independent intact bonds) gets K^-1 = 0 and F = I: no stress force.
 // Usage: internal_force(model, bonds, y, f) (bond_loop.hpp) runs point_pass (K on damage, F, P) and the
 // bond pass. With Law::flanagan_taylor call update_stress(bonds, y, v, dt) once per step (Explicit does), then
-// internal_force at y_np1. Pass v = v_nph = (y_np1 - y_n)/dt with the mid-step configuration
-// y = (y_n + y_np1)/2: L = Fdot F^-1 is then exactly skew for a rigid rotation (Cayley), so no
-// spurious stress. Peridigm pairs v_nph with y_np1, which gives a spurious expansion
-// N (1 - cos(theta/N)) per rotation theta in N steps (2.8e-2 K of stress for 90 degrees in 100 steps;
-// tests/test_correspondence.cpp).
+// internal_force at y_np1. Pass v = v_nph = (y_np1 - y_n)/dt with the mid-step configuration y = (y_n + y_np1)/2:
+// L = Fdot F^-1 is then exactly skew for a rigid rotation (Cayley), so no spurious stress. Peridigm pairs v_nph
+// with y_np1: a spurious expansion N (1 - cos(theta/N)) per rotation theta in N steps (2.8e-2 K of stress for
+// 90 degrees in 100 steps; tests/test_correspondence.cpp).
 // Cost (issue 3; reports/3d/model_cost.md): family sums are lane sums in the bond-loop order; the
 // i-end force P_i K_i^-1 sum_j omega xi V_j is summed once per node (node_force); the bond kernel
 // reads P_j K_j^-1 and F_j (18 values per bond). 3D with AVX2/FMA: vectorised within the bond
@@ -318,20 +317,21 @@ struct Correspondence {
                 for (int c = 0; c < D; ++c) s += Aj[a + D * c] * e[c];
                 f[a] = wV[k] * s;
             }
-            if constexpr (Hourglass) {
-                const double* Fi = F + DD * i;
-                const double* Fj = F + DD * static_cast<std::size_t>(j);
-                double proj = 0, y2 = 0;  // (2Y - (F_i + F_j) xi).Y and |Y|^2 [m^2]
-                for (int a = 0; a < D; ++a) {
-                    double g = 0;
-                    for (int c = 0; c < D; ++c) g += (Fi[a + D * c] + Fj[a + D * c]) * e[c];
-                    proj += (2 * Y[a] - g) * Y[a];
-                    y2 += Y[a] * Y[a];
-                }
-                const double t = hg[k] * proj / (y2 > 0 ? y2 : 1.0);
-                for (int a = 0; a < D; ++a) f[a] += t * Y[a];
-            }
+            if constexpr (Hourglass) f += hourglass_force(i, k, j, Y);
             return f;
+        }
+        // The hourglass term of bond_force [N/m^3] (bond work without it, bond_loop.hpp).
+        Vec<D> hourglass_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const requires Hourglass
+        {
+            const double *Fi = F + DD * i, *Fj = F + DD * static_cast<std::size_t>(j);
+            double proj = 0, y2 = 0;  // (2Y - (F_i + F_j) xi).Y and |Y|^2 [m^2]
+            for (int a = 0; a < D; ++a) {
+                double g = 0;
+                for (int c = 0; c < D; ++c) g += (Fi[a + D * c] + Fj[a + D * c]) * (x[c][j] - x[c][i]);
+                proj += (2 * Y[a] - g) * Y[a];
+                y2 += Y[a] * Y[a];
+            }
+            return (hg[k] * proj / (y2 > 0 ? y2 : 1.0)) * Y;
         }
 #ifdef PD_CHUNK_WIDTH
         // Chunk hook of the bond loop (bond_loop.hpp): f of the nodes of run p's chunks, undamaged.

@@ -7,11 +7,13 @@
 //                        the node block, 4-padded columns of A = P K^-1 then of F), transposed, and
 //                        the rest (Y, hourglass projection, division, sums) runs across 4 bonds;
 //                        Out: also the bond work (bond_loop.hpp) of the 4-bond groups holding a bond
-//                        with j > i, its force A_i xi omega V_j included (bond_work_avx2).
+//                        with j > i, its force A_i xi omega V_j included (bond_work_avx2), its
+//                        hourglass term left out when out->hourglass is false.
 //   deformation_sum_avx2 N = sum_j omega (y_j - y_i) (x) xi V_j without damage, column-major in N[9]:
 //                        each bond adds (y_j - y_i) w xi_c to column c as one 4-wide FMA (xpad, ypad:
 //                        positions 4-padded per node, 2 loads per bond).
-// Kn is Correspondence<3>::Kernel<Hourglass> (members x, wV, hg, blk, bond_force, node_share, node_force).
+// Kn is Correspondence<3>::Kernel<Hourglass> (members x, wV, hg, blk, bond_force, hourglass_force,
+// node_share, node_force).
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/bonds.hpp"
@@ -127,10 +129,10 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
             }
             transpose(a, Ax);
             const __m256d w = _mm256_loadu_pd(kn.wV + k0);
-            __m256d f[3];
+            __m256d f[3], f_stress[3];
             for (int d = 0; d < 3; ++d) {
                 Yx[d] = _mm256_sub_pd(_mm256_set_pd(yc[d][jj[3]], yc[d][jj[2]], yc[d][jj[1]], yc[d][jj[0]]), yi_[d]);
-                f[d] = _mm256_mul_pd(w, Ax[d]);
+                f[d] = f_stress[d] = _mm256_mul_pd(w, Ax[d]);
             }
             if constexpr (Hourglass) {
                 transpose(g, Gx);
@@ -157,7 +159,8 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
                 if (_mm256_movemask_pd(upper)) {  // families are sorted by partner: j < i groups skip this
                     transpose(o, Ox);
                     __m256d fk[3];
-                    for (int d = 0; d < 3; ++d) fk[d] = _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], f[d]), keep);
+                    const __m256d* fb = Hourglass && !out->hourglass ? f_stress : f;  // the work with or without hourglass
+                    for (int d = 0; d < 3; ++d) fk[d] = _mm256_mul_pd(_mm256_fmadd_pd(w, Ox[d], fb[d]), keep);
                     w_max = _mm256_max_pd(w_max, bond_work_avx2(*out, i, k0, jj, Yx, fk, upper, keep));
                 }
             }
@@ -182,6 +185,8 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
             if (static_cast<std::size_t>(j) > i) {
                 const double keep = b.intact[k];
                 fk += keep * kn.node_share(i, k, j);
+                if constexpr (Hourglass)
+                    if (!out->hourglass) fk -= keep * kn.hourglass_force(i, k, j, Y);
                 w_max_tail = std::max(w_max_tail, bond_work<3, false>(*out, i, k, j, Y.c.data(), fk.c.data(), keep));
             }
     }
