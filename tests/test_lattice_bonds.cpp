@@ -191,9 +191,12 @@ std::vector<double> bond_directions_deg(double delta, PartialVolume pv)
 // 90 deg (the spec's [INFERRED] node-centre set). PA-PDLAMMPS only rescales V_j of those bonds
 // (family |xi| <= delta, bonds.hpp), so its directions are the same. The thesis's IPA-Hybrid set
 // adds 18.435/71.565 (offset (3,1), |xi| = sqrt 10 = 3.162 > 3: a partially covered cell) and
-// 30.964/59.036 (centroids in cell (3,2)); this library has no IPA-Hybrid quadrature, so at m = 3
-// those directions are absent. Widening the family to delta = 3.17 (> sqrt 10) brings in (3,1):
-// atan(1/3) = 18.435 and 71.565 deg, confirming where the spec's extra directions come from.
+// 30.964/59.036 (centroids in cell (3,2)). Widening the family to delta = 3.17 (> sqrt 10) brings in
+// (3,1): atan(1/3) = 18.435 and 71.565 deg, confirming where the spec's extra directions come from.
+// The exact-area partial volumes (IPA-Hybrid's areas, integration points at the nodes) bring in at
+// delta = 3 every cell the horizon cuts, (3,1) and (3,2) (corners at sqrt 6.5 and sqrt 8.5 < 3), with
+// their covered fractions: (3,2) adds atan(2/3) = 33.690 and 56.310 deg where IPA-Hybrid's centroid
+// of that cell gives 30.964 and 59.036.
 TEST(Bonds, WeakBondDirectionsOfSquareLatticeMatchSpecV5)
 {
     const std::vector<double> node_centre = {0.0, 26.565, 45.0, 63.435, 90.0};
@@ -201,7 +204,11 @@ TEST(Bonds, WeakBondDirectionsOfSquareLatticeMatchSpecV5)
     EXPECT_EQ(bond_directions_deg(3.0, PartialVolume::pa_pdlammps), node_centre);
     const std::vector<double> with_31 = {0.0, 18.435, 26.565, 45.0, 63.435, 71.565, 90.0};
     EXPECT_EQ(bond_directions_deg(3.17, PartialVolume::none), with_31);
+    const std::vector<double> cut_cells = {0.0, 18.435, 26.565, 33.69, 45.0, 56.31, 63.435, 71.565, 90.0};
+    EXPECT_EQ(bond_directions_deg(3.0, PartialVolume::exact_area), cut_cells);
     // The IPA-Hybrid-only directions of the spec are not produced at m = 3 (documented gap above).
     for (double a : {18.435, 30.964, 59.036, 71.565})
         for (double d : bond_directions_deg(3.0, PartialVolume::pa_pdlammps)) EXPECT_GT(std::abs(d - a), 0.5) << a;
+    for (double a : {30.964, 59.036})
+        for (double d : bond_directions_deg(3.0, PartialVolume::exact_area)) EXPECT_GT(std::abs(d - a), 0.5) << a;
 }

@@ -1,5 +1,6 @@
 // Neighbour search by cell lists, O(N) for bounded density, and CSR bond families (bonds.hpp).
 #include "pd/bonds.hpp"
+#include "pd/partial_area.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,8 @@ PartialVolume parse_partial_volume(const std::string& name)
 {
     if (name == "none") return PartialVolume::none;
     if (name == "pa-pdlammps") return PartialVolume::pa_pdlammps;
-    throw std::invalid_argument("unknown partial-volume option '" + name + "' (none, pa-pdlammps)");
+    if (name == "exact-area") return PartialVolume::exact_area;
+    throw std::invalid_argument("unknown partial-volume option '" + name + "' (none, pa-pdlammps, exact-area)");
 }
 
 template <int D>
@@ -24,13 +26,19 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     b.delta = delta;
     b.offset.assign(n + 1, 0);
     if (n == 0) return b;
-    if (opt.partial_volume == PartialVolume::pa_pdlammps && !(body.dx > 0))
-        throw std::invalid_argument("pa-pdlammps partial volumes need a lattice spacing (dx > 0)");
+    const bool exact = opt.partial_volume == PartialVolume::exact_area;
+    if (opt.partial_volume != PartialVolume::none && !(body.dx > 0))
+        throw std::invalid_argument("partial volumes need a lattice spacing (dx > 0)");
+    if (exact && D != 2) throw std::invalid_argument("exact-area partial volumes are for 2D lattices only");
+    if (exact && opt.influence.kind != Influence::Kind::one && opt.influence.kind != Influence::Kind::inv_xi)
+        throw std::invalid_argument("exact-area partial volumes need an influence function defined beyond delta (one, inv_xi)");
+    // Search reach: delta, or (exact-area) the farthest cell corner the horizon can touch.
+    const double reach = (exact ? delta + body.dx * std::sqrt(0.5) : delta) * (1 + horizon_roundoff);
 
     // 1. Cell lists: cells of side a little above the search reach over the bounding box, nodes
     // sorted by cell. With side exactly delta, lattice points at exactly delta (integer m) sit on
     // cell faces and round-off in (x - lo)/side can put two neighbours two cells apart (bond lost).
-    const double cell = delta * (1 + 1e-6);  // 1e-6 >> horizon_roundoff and index round-off
+    const double cell = reach * (1 + 1e-6);  // 1e-6 >> horizon_roundoff and index round-off
     Vec<D> lo, hi;
     for (int d = 0; d < D; ++d) {
         lo[d] = *std::min_element(body.x.c[d].begin(), body.x.c[d].end());
@@ -60,8 +68,8 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     }
 
     // 2. Families, sorted by partner index for locality.
-    const double reach = delta * (1 + horizon_roundoff);
     const double h = body.dx;
+    const double ca = std::cos(opt.lattice_angle), sa = std::sin(opt.lattice_angle);
     std::vector<int> fam;
     for (std::size_t i = 0; i < n; ++i) {
         fam.clear();
@@ -96,6 +104,13 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
             double beta = 1;
             if (opt.partial_volume == PartialVolume::pa_pdlammps && r > delta - h / 2)
                 beta = std::min(1.0, (delta + h / 2 - r) / h);  // spec/002 sec. 3.2, PA-PDLAMMPS
+            if constexpr (D == 2)
+                if (exact && r > delta - h * std::sqrt(0.5)) {  // cells nearer lie wholly inside
+                    const Vec<2> e = body.x[j] - xi;  // in the lattice's axes, folded (the area is symmetric) so that beta_ij == beta_ji
+                    const Vec<2> u{{std::abs(ca * e[0] + sa * e[1]), std::abs(-sa * e[0] + ca * e[1])}};
+                    beta = cell_fraction_in_horizon(u, delta, h);
+                    if (!(beta > 0)) continue;  // corner just outside
+                }
             b.partner.push_back(j);
             b.length.push_back(r);
             b.omega.push_back(opt.influence(r, delta));

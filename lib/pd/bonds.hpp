@@ -3,7 +3,13 @@
 // A family holds every j != i with |x_j - x_i| <= delta (boundary included).
 // Partial volumes (spec/002 sec. 3.2): `none` uses the full V_j; `pa-pdlammps` scales V_j by
 //   beta = 1 for |xi| <= delta - h/2,  beta = (delta + h/2 - |xi|)/h for delta - h/2 < |xi| <= delta,
-// with h the lattice spacing (the partial-area rule of PDLAMMPS).
+// with h the lattice spacing (the partial-area rule of PDLAMMPS). `exact-area` (2D lattices only)
+// scales V_j by the exact fraction of j's square cell (side h, axes rotated by lattice_angle) inside
+// the horizon (partial_area.hpp), and so also holds the j with |xi| > delta whose cell the horizon
+// cuts (|xi| < delta + h/sqrt 2): the areas of IPA-Hybrid (spec/002 sec. 3.2), with the integration
+// point left at the node (IPA-Hybrid moves it to the centroid of the covered part). The areas of a
+// full family add up to pi delta^2 exactly. Influence functions must be defined beyond delta
+// (one, inv_xi).
 #pragma once
 #include "pd/influence.hpp"
 #include "pd/lattice.hpp"
@@ -16,8 +22,8 @@
 
 namespace pd {
 
-enum class PartialVolume { none, pa_pdlammps };
-PartialVolume parse_partial_volume(const std::string& name);  // "none" | "pa-pdlammps"; throws otherwise
+enum class PartialVolume { none, pa_pdlammps, exact_area };
+PartialVolume parse_partial_volume(const std::string& name);  // "none" | "pa-pdlammps" | "exact-area"; throws otherwise
 
 struct Bonds {
     double delta = 0;                 // horizon [m]
@@ -54,6 +60,7 @@ struct Bonds {
 struct BondOptions {
     Influence influence{};
     PartialVolume partial_volume = PartialVolume::none;
+    double lattice_angle = 0;  // exact-area: rotation of the 2D lattice's axes from x [rad]
     // Optional filter: a bond i->j is created only when keep(i, j) is true (pre-cracks as cut
     // bonds). It must be symmetric in i and j.
     std::function<bool(int i, int j)> keep;

@@ -4,7 +4,7 @@
 // crossing it removed); a step traction on the top and bottom node rows (b = sigma/dx, seed 001
 // eq. 5.2); free edges. Materials: Duran 50 (seed 001, spec/001_004 A.3/V1: E 65 GPa, rho 2235,
 // Gc 204 J/m^2, 12 MPa) and soda-lime (spec/002 sec. 7.1/V7: E 72 GPa, rho 2440, Gc 135 J/m^2,
-// 22 MPa). m = 3, PA-PDLAMMPS partial volumes (spec/002 ch. 6).
+// 22 MPa). m = 3, PA-PDLAMMPS partial volumes (spec/002 ch. 6; `--partial-volume none|exact-area`, bonds.hpp).
 // Reference: seed 001 (Duran 50): crack opens after ~10 us, Y branch at ~30 us near x = 70 mm;
 // spec/002 Table 6.2/6.3 (soda-lime, uniform 1 and 0.5 mm): t_i, t_b, l_b, theta_i, V_mean.
 // Compared: initiation time, branching time and position, branch angles, mean and maximum tip
@@ -64,7 +64,7 @@ static int run(int argc, char** argv)
     double& a0 = opt.add("crack", 0.05, "pre-crack length from the left edge", "m");
     opt.add_string("dx-list", "1e-3,5e-4,2.5e-4", "lattice spacings of the refinement study (quick: 1e-3)");
     double& m = opt.add("m", 3, "horizon ratio delta/dx");
-    std::string& pv = opt.add_string("partial-volume", "pa-pdlammps", "partial volumes", {"none", "pa-pdlammps"});
+    std::string& pv = opt.add_string("partial-volume", "pa-pdlammps", "partial volumes", {"none", "pa-pdlammps", "exact-area"});
     int& no_fail = opt.add_int("no-fail-rows", 0, "node rows at each loaded edge whose bonds never break (seed 001 A.2 item 8)");
     double& dt_max = opt.add("dt", 50e-9, "largest time step (spec/002: 50 ns)", "s");
     double& safety = opt.add("dt-factor", 0.8, "time step bound / Silling-Askari critical step");
