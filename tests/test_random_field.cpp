@@ -107,19 +107,21 @@ TEST(RandomField, BondValuesSymmetricAndFollowTheRule)
     const Body<3> body = box<3>({0, 0, 0}, {6e-3, 5e-3, 4e-3}, 1e-3);
     const Bonds b = build_bonds(body, 2.1e-3);
     const RandomSpec spec = RandomSpec::normal(1.328e-2, 3.32e-3, 5);
-    for (BondRule rule : {BondRule::min, BondRule::mean, BondRule::bond}) {
+    for (BondRule rule : {BondRule::min, BondRule::max, BondRule::mean, BondRule::bond}) {
         const auto s = bond_field(spec, b, rule);
         ASSERT_EQ(s.size(), b.size());
         for (std::size_t k = 0; k < b.size(); ++k) ASSERT_EQ(s[k], s[b.reverse[k]]) << k;
     }
     const auto smin = bond_field(spec, b, BondRule::min), smean = bond_field(spec, b, BondRule::mean);
+    const auto smax = bond_field(spec, b, parse_bond_rule("max"));
     for (std::size_t i = 0; i < b.nodes(); ++i)
         for (auto k = b.begin(i); k < b.end(i); ++k) {
             const double si = spec(i), sj = spec(b.partner[k]);
             ASSERT_EQ(smin[k], std::min(si, sj));
+            ASSERT_EQ(smax[k], std::max(si, sj));
             ASSERT_DOUBLE_EQ(smean[k], 0.5 * (si + sj));
         }
-    EXPECT_THROW(parse_bond_rule("max"), std::invalid_argument);
+    EXPECT_THROW(parse_bond_rule("half"), std::invalid_argument);
 }
 
 TEST(RandomField, PerBondCriticalStretchBreaksExactlyTheWeakBonds)

@@ -13,6 +13,8 @@
 // s_c(i), one-sided; spec B.2). Our owner-computes loop needs a bond and its reverse to break
 // together (momentum balance), so the rule here is symmetric:
 //   min   s_k = min(s_i, s_j)  (the pair fails when its weaker half would fail in the source)
+//   max   s_k = max(s_i, s_j)  (the pair keeps its whole force until the stronger half would fail; the
+//         source's half-bonds keep half of it from the weaker to the stronger, so min and max bracket them)
 //   mean  s_k = (s_i + s_j)/2
 //   bond  an independent draw per unordered pair, id = (min(i,j), max(i,j)).
 // The floor guards against non-physical values: an unbounded normal gives s_c < 0 with
@@ -90,13 +92,14 @@ inline std::vector<double> node_field(const RandomSpec& spec, std::size_t nodes)
     return v;
 }
 
-enum class BondRule { min, mean, bond };
+enum class BondRule { min, max, mean, bond };
 inline BondRule parse_bond_rule(const std::string& s)
 {
     if (s == "min") return BondRule::min;
+    if (s == "max") return BondRule::max;
     if (s == "mean") return BondRule::mean;
     if (s == "bond") return BondRule::bond;
-    throw std::invalid_argument("bond rule must be min, mean or bond");
+    throw std::invalid_argument("bond rule must be min, max, mean or bond");
 }
 
 // Per-bond values (CSR order of b), symmetric: value[k] == value[reverse[k]] (header rules).
@@ -114,6 +117,7 @@ inline std::vector<double> bond_field(const RandomSpec& spec, const Bonds& b, Bo
             const std::uint64_t lo = std::min<std::uint64_t>(i, j), hi = std::max<std::uint64_t>(i, j);
             switch (rule) {
             case BondRule::min: s[k] = std::min(node[i], node[j]); break;
+            case BondRule::max: s[k] = std::max(node[i], node[j]); break;
             case BondRule::mean: s[k] = 0.5 * (node[i] + node[j]); break;
             case BondRule::bond: s[k] = spec(lo * N + hi); break;  // unordered pair id
             }

@@ -128,7 +128,7 @@ static int run(int argc, char** argv)
     double& penalty = opt.add("penalty", 1, "contact penalty factor k = factor E/dx^2");
     double& s_mean = opt.add("s-mean", 1.328e-2, "critical stretch mean");
     double& s_sd = opt.add("s-sd", 3.32e-3, "critical stretch standard deviation");
-    std::string& rule = opt.add_string("bond-rule", "min", "bond value from the two nodes", {"min", "mean", "bond"});
+    std::string& rule = opt.add_string("bond-rule", "min", "bond value from the two nodes", {"min", "max", "mean", "bond"});
     int& seed = opt.add_int("seed", 1, "random field seed");
     double& t_end = opt.add("t-end", 4e-3, "end time (quick 1.2e-3)", "s");
     double& dt_factor = opt.add("dt-factor", 0.5, "time step / Silling-Askari critical step (PMB bound; LPS at nu 0.35 is unstable at 0.8)");
