@@ -35,19 +35,19 @@ struct Loading {
 // (bond_force, or bond_scalar times Y) at each deformation, not from the force pass; with
 // `reference` given, from that model's instead, evaluated at the same deformations. b's intact
 // flags are as before on return.
-template <class Model>
-Loading random_loading(Model model, const Body<3>& body, Bonds& b, CriticalMicropotential<3>& mp, Correspondence<3>* reference = nullptr)
+template <int D, class Model>
+Loading random_loading(Model model, const Body<D>& body, Bonds& b, CriticalMicropotential<D>& mp, Correspondence<D>* reference = nullptr)
 {
     const std::vector<std::uint8_t> intact = b.intact;
     Loading out{std::vector<double>(b.size()), std::vector<double>(b.size(), 0.0)};
-    std::vector<Vec<3>> g_old(b.size()), Y_old(b.size());
+    std::vector<Vec<D>> g_old(b.size()), Y_old(b.size());
     for (unsigned s = 0; s < 5; ++s) {
         if (s == 2) {
             for (std::size_t k = 0; k < b.size(); k += 11) b.break_pair(k);
             if constexpr (requires { model.recompute(b); }) model.recompute(b);
         }
-        const Field<3> y = deformed(body, 100 + s);
-        Field<3> f;
+        const Field<D> y = deformed(body, 100 + s);
+        Field<D> f;
         if constexpr (requires { model.set_time_step(step_s); }) model.set_time_step(step_s);
         internal_force(model, b, y, f);
         mp.accumulate(model, b, y);
@@ -55,12 +55,12 @@ Loading random_loading(Model model, const Body<3>& body, Bonds& b, CriticalMicro
         for (std::size_t i = 0; i < body.size(); ++i)
             for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
                 const int j = b.partner[k];
-                const Vec<3> Y = y[j] - y[i];
-                Vec<3> fk;
+                const Vec<D> Y = y[j] - y[i];
+                Vec<D> fk;
                 if (reference) fk = reference->bond_force(i, k, j, Y);
                 else if constexpr (requires { model.bond_force(i, k, j, Y); }) fk = model.bond_force(i, k, j, Y);
                 else fk = model.bond_scalar(i, k, j, norm(Y)) * Y;
-                const Vec<3> g = (b.intact[k] / b.volume[k]) * fk;
+                const Vec<D> g = (b.intact[k] / b.volume[k]) * fk;
                 const double r = mp.jc_ratio.empty() ? 1.0 : 0.5 * (mp.jc_ratio[i] + mp.jc_ratio[j]);
                 if (s > 0) out.w_ref[k] += b.intact[k] * r * 0.5 * dot(g_old[k] + g, Y - Y_old[k]);
                 g_old[k] = g;
@@ -144,6 +144,29 @@ TEST(Micropotential, MatchesTheWorkSumFromBothEndsAndIsThreadIndependent)
     check(PlasticPALS({.material = steel}, body, b, law), "plastic PALS");
     check(PlasticCorrespondence({steel, Correspondence<3>::Law::linear, 0.02}, body, b, law), "plastic correspondence");
     check(ViscoelasticLPS({{.material = steel, .dim = 3}, 1.0, step_s}, b), "viscoelastic LPS");
+}
+
+// 2D correspondence takes the generic bond pass (the AVX2 family kernel is 3D only): w with and
+// without the hourglass work against the same references as above, tolerance as above.
+TEST(Micropotential, TwoDimensionalCorrespondenceWithAndWithoutHourglassWork)
+{
+    const auto body = box<2>({{0, 0}}, {{9 * dx, 8 * dx}}, dx, 1e-3);
+    Bonds b = build_bonds(body, m_ratio * dx);
+    b.enable_damage();
+    for (std::size_t k = 0; k < b.size(); k += 7) b.break_pair(k);
+    Correspondence<2> no_hourglass = make_corr<2>(0.0)(body, b);
+    for (bool hourglass_work : {true, false}) {
+        CriticalMicropotential<2> mp;
+        mp.hourglass_work = hourglass_work;
+        const Loading run = random_loading(make_corr<2>(0.02)(body, b), body, b, mp, hourglass_work ? nullptr : &no_hourglass);
+        double wmax = 0, err = 0;
+        for (std::size_t k = 0; k < b.size(); ++k) {
+            wmax = std::max(wmax, std::abs(run.w_ref[k]));
+            err = std::max(err, std::abs(run.w[k] - run.w_ref[k]));
+        }
+        EXPECT_GT(wmax, 0.0);
+        EXPECT_LT(err, 1e-12 * wmax) << "hourglass work " << hourglass_work;
+    }
 }
 
 // With w_C at the median w of the intact bonds, apply() breaks exactly the intact bonds whose pair

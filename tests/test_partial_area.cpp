@@ -4,6 +4,7 @@
 // and the partition of the disc: the cells of a full family plus the node's own cover the horizon
 // exactly, so their areas add up to pi delta^2.
 #include "pd/bonds.hpp"
+#include "pd/models/surface_correction.hpp"
 #include "pd/partial_area.hpp"
 
 #include <gtest/gtest.h>
@@ -46,6 +47,12 @@ TEST(PartialArea, ClosedFormCases)
     // A side on the tangent y = R: the chord is the circle's on both sides of x = 0 (without that
     // split point the whole range was taken as lying below the circle).
     EXPECT_NEAR(disc_rectangle_area(R, -0.5, 0.5, 0.5, R), chord_integral(R, -0.5, 0.5, 0.5, R), 1e-7);
+    // An edge a few ulps inside x = R: the sliver's area is ~1e-22 (asin(x/R) gave -3.7e-8 at R = 4.7).
+    for (double r : {R, 4.7}) {
+        const double a = disc_rectangle_area(r, std::nextafter(std::nextafter(r, 0.0), 0.0), r + 1, -0.5, 0.5);
+        EXPECT_GE(a, 0.0);
+        EXPECT_LT(a, 1e-15);
+    }
 }
 
 // Random rectangles cutting the disc in every way (one to four corners inside, chords through one or
@@ -72,8 +79,8 @@ TEST(PartialArea, MatchesTheChordIntegral)
 TEST(PartialArea, FamilyAreasAddUpToTheDisc)
 {
     const double h = 1.0, t = 0.01;
-    for (double deg : {0.0, 5.0, 30.0})
-        for (double m : {1.5, 2.05, 3.0, 3.3, 4.7}) {
+    for (double deg : {0.0, 5.0, 10.0, 30.0})
+        for (double m : {1.5, 2.05, 2.5, 3.0, 3.3, 3.5, 4.7, 5.5}) {
             const double th = deg * pi / 180, c = std::cos(th), s = std::sin(th);
             Body<2> body;
             body.dx = h;
@@ -118,6 +125,13 @@ TEST(PartialArea, CellBeyondTheHorizonJoinsWithItsCoveredFraction)
 
 TEST(PartialArea, RefusesWhatItCannotDo)
 {
+    {  // references that count full families within delta refuse families that reach beyond it
+        const auto body = box<2>({{0, 0}}, {{12.0, 12.0}}, 1.0);
+        const Bonds b = build_bonds(body, 3.0, {.partial_volume = PartialVolume::exact_area});
+        const PMB pmb({.material = Elastic::from_E_nu(200e9, 1.0 / 3.0), .dim = 2}, Influence{}, b);
+        EXPECT_FALSE(families_within_horizon(b));
+        EXPECT_THROW(surface_correction(pmb, body, b), std::invalid_argument);
+    }
     BondOptions opt;
     opt.partial_volume = PartialVolume::exact_area;
     EXPECT_THROW(build_bonds(box<3>({{0, 0, 0}}, {{4.0, 4.0, 4.0}}, 1.0), 2.0, opt), std::invalid_argument);

@@ -109,7 +109,7 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
                     const Vec<2> e = body.x[j] - xi;  // in the lattice's axes, folded (the area is symmetric) so that beta_ij == beta_ji
                     const Vec<2> u{{std::abs(ca * e[0] + sa * e[1]), std::abs(-sa * e[0] + ca * e[1])}};
                     beta = cell_fraction_in_horizon(u, delta, h);
-                    if (!(beta > 0)) continue;  // corner just outside
+                    if (!(beta > 1e-12)) continue;  // corner outside, or inside by round-off only
                 }
             b.partner.push_back(j);
             b.length.push_back(r);

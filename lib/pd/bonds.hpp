@@ -73,6 +73,15 @@ inline constexpr double horizon_roundoff = 1e-10;
 template <int D>
 Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt = {});
 
+// True when no bond is longer than delta (with the roundoff rule); false for exact-area families,
+// which also hold the cells the horizon cuts beyond delta.
+inline bool families_within_horizon(const Bonds& b)
+{
+    for (double L : b.length)
+        if (L > b.delta * (1 + horizon_roundoff)) return false;
+    return true;
+}
+
 // Integer offsets n != 0 of the full family of a simple-cubic lattice of spacing dx in `dim`
 // dimensions (|n| dx <= delta with the roundoff rule of build_bonds); unused components are 0.
 std::vector<std::array<long, 3>> full_family_offsets(double delta, double dx, int dim);

@@ -21,7 +21,9 @@ inline double disc_rectangle_area(double R, double x0, double x1, double y0, dou
     const double a = std::max(x0, -R), b = std::min(x1, R);
     if (!(a < b) || !(y0 < y1)) return 0;
     auto s = [R](double x) { return std::sqrt(std::max(0.0, (R - x) * (R + x))); };  // not R^2 - x^2: exact 0 at x = R
-    auto S = [R, &s](double x) { return 0.5 * (x * s(x) + R * R * std::asin(std::clamp(x / R, -1.0, 1.0))); };
+    // asin(x/R) as atan2(x, s(x)): asin is ill-conditioned at x/R ~ +-1 (an edge an ulp from R gave a
+    // negative area of 4e-8 h^2), atan2 is not.
+    auto S = [R, &s](double x) { return 0.5 * (x * s(x) + R * R * std::atan2(x, s(x))); };
     double cut[6] = {a, b};
     int n = 2;
     for (double y : {y0, y1})

@@ -108,9 +108,15 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro)
             for (std::size_t i = 0; i < body.size(); ++i)
                 for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k)
                     if (!bonds.intact[k] && std::isnan(from_end)) {
+                        // from the lattice's own faces (box() rounds L/dx and W/dx to whole cells)
                         const pd::Vec<3> mid = 0.5 * (body.x[i] + body.x[bonds.partner[k]]);
-                        from_end = std::min(mid[0], L - mid[0]);
-                        from_face = std::min({mid[1], W - mid[1], mid[2], W - mid[2]});
+                        double d[3];
+                        for (int a = 0; a < 3; ++a) {
+                            const auto [lo, hi] = std::minmax_element(body.x.c[a].begin(), body.x.c[a].end());
+                            d[a] = std::min(mid[a] - (*lo - dx / 2), *hi + dx / 2 - mid[a]);
+                        }
+                        from_end = d[0];
+                        from_face = std::min(d[1], d[2]);
                     }
         }
     }

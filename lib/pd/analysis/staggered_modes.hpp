@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 namespace pd {
@@ -45,6 +46,8 @@ Eigen::VectorXd staggered_pattern(const Body<D>& body, double L, int kind, int k
 template <int D, class Model>
 double interior_checker_energy(Model& model, const Body<D>& body, const Bonds& bonds, double E)
 {
+    if (!families_within_horizon(bonds))
+        throw std::invalid_argument("interior_checker_energy: full families are counted within delta; these reach beyond it (exact-area)");
     const std::int64_t full = static_cast<std::int64_t>(full_family_offsets(bonds.delta, body.dx, D).size());
     const double a = 1e-6 * body.dx;  // amplitude [m]
     const Eigen::VectorXd u = staggered_pattern(body, 1.0, 0);

@@ -85,6 +85,9 @@ std::array<double, D> full_family_energy(const PMB& pmb, const Body<D>& body, co
     const double dx = body.dx;
     if (!(dx > 0))
         throw std::invalid_argument("surface correction: the full-family reference needs a lattice body (dx > 0); use Reference::classical");
+    if (!families_within_horizon(bonds))
+        throw std::invalid_argument("surface correction: the full-family reference counts the lattice within delta, these families reach "
+                                    "beyond it (exact-area partial volumes); use Reference::classical");
     std::map<long, double> coef_of;  // |n|^2 -> c omega beta V_j / |xi|
     for (std::size_t i = 0; i < bonds.nodes(); ++i)
         for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
