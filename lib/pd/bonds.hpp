@@ -8,7 +8,7 @@
 // the horizon (partial_area.hpp), and so also holds the j with |xi| > delta whose cell the horizon
 // cuts (|xi| < delta + h/sqrt 2): the areas of IPA-Hybrid (spec/002 sec. 3.2), with the integration
 // point left at the node (IPA-Hybrid moves it to the centroid of the covered part). The areas of a
-// full family add up to pi delta^2 exactly. Influence functions must be defined beyond delta
+// full family add up to pi delta^2 (to 1e-12). Influence functions must be defined beyond delta
 // (one, inv_xi).
 #pragma once
 #include "pd/influence.hpp"
