@@ -1,14 +1,17 @@
-// Fixtures of the damage tests (test_damage_models.cpp, test_damage_energy.cpp): the 1D/2D/3D
-// blocks, broken-pair predicates, the random small deformation, round-off comparisons, the model
-// makers and the "damaged body equals the body built from scratch" checks. Round-off tolerance
+// Fixtures of the damage tests (test_damage_models.cpp, test_damage_energy.cpp, test_micropotential*.cpp):
+// the 1D/2D/3D blocks, broken-pair predicates, the random small deformation, round-off comparisons, the
+// model makers, an Explicit PMB body with micropotential damage and the "damaged body equals the body
+// built from scratch" checks. Round-off tolerance
 // (all comparisons): 1e-12 of the largest value (reasons in test_damage_models.cpp).
 #pragma once
 
 #include "pd/bond_loop.hpp"
+#include "pd/damage/micropotential.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
+#include "pd/time/verlet.hpp"
 
 #include <gtest/gtest.h>
 
@@ -232,5 +235,17 @@ void corr_state(const Correspondence<D>& d, const Correspondence<D>& s)
     }
 }
 inline auto no_state = [](const auto&, const auto&) {};
+
+// A steel PMB body in Explicit with critical-micropotential damage at w_C (test_micropotential*.cpp).
+struct ExplicitPMBMicropotential {
+    PMB pmb;
+    CriticalMicropotential<3> mp;
+    Explicit<3, PMB> ex;
+    ExplicitPMBMicropotential(const Body<3>& body, Bonds& b, double w_c) : pmb({steel, 3}, Influence{}, b), ex(body, b, pmb, 7850)
+    {
+        mp.w_c = w_c;
+        ex.micropotential = &mp;
+    }
+};
 
 }  // namespace pd_test

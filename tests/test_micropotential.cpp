@@ -174,11 +174,8 @@ TEST(Micropotential, ExplicitAccumulatesTheBondEnergy)
     const auto body = block<3>();
     Bonds b = build_bonds(body, m_ratio * dx);
     b.enable_damage();
-    PMB pmb({steel, 3}, Influence{}, b);
-    CriticalMicropotential<3> mp;
-    mp.w_c = 1e300;
-    Explicit<3, PMB> ex(body, b, pmb, 7850);
-    ex.micropotential = &mp;
+    ExplicitPMBMicropotential run(body, b, 1e300);
+    Explicit<3, PMB>& ex = run.ex;
     const Field<3> y0 = deformed(body, 9);
     ex.u = y0;
     for (int d = 0; d < 3; ++d) for (std::size_t i = 0; i < body.size(); ++i) ex.u.c[d][i] -= body.x.c[d][i];
@@ -190,9 +187,9 @@ TEST(Micropotential, ExplicitAccumulatesTheBondEnergy)
         for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
             const double L = b.length[k], s = (norm(y[b.partner[k]] - y[i]) - L) / L;
             const double s0 = (norm(y0[b.partner[k]] - y0[i]) - L) / L;
-            const double w_ref = 0.5 * pmb.c * (s * s - s0 * s0) * L;
+            const double w_ref = 0.5 * run.pmb.c * (s * s - s0 * s0) * L;
             wmax = std::max(wmax, std::abs(w_ref));
-            err = std::max(err, std::abs(mp.work(b, k) - w_ref));
+            err = std::max(err, std::abs(run.mp.work(b, k) - w_ref));
         }
     EXPECT_GT(wmax, 0.0);
     EXPECT_LT(err, 1e-3 * wmax);

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <random>
+#include <utility>
 
 using namespace pd;
 using namespace pd_test;
@@ -76,6 +77,17 @@ Loading random_loading(Model model, const Body<D>& body, Bonds& b, CriticalMicro
     return out;
 }
 
+// Largest |w_ref| and largest |w - w_ref| over the bonds of a loading.
+std::pair<double, double> largest_and_error(const Loading& run)
+{
+    double wmax = 0, err = 0;
+    for (std::size_t k = 0; k < run.w.size(); ++k) {
+        wmax = std::max(wmax, std::abs(run.w_ref[k]));
+        err = std::max(err, std::abs(run.w[k] - run.w_ref[k]));
+    }
+    return {wmax, err};
+}
+
 Body<3> loaded_box()  // above parallel_min_nodes, so that 2 threads really split the nodes
 {
     return box<3>({{0, 0, 0}}, {{14 * dx, 13 * dx, 12 * dx}}, dx);
@@ -115,14 +127,12 @@ TEST(Micropotential, MatchesTheWorkSumFromBothEndsAndIsThreadIndependent)
         }
         set_threads(0);
         EXPECT_EQ(run[0].w, run[1].w) << name;
-        double wmax = 0, err = 0;
         for (std::size_t k = 0; k < b.size(); ++k) {
-            wmax = std::max(wmax, std::abs(run[0].w_ref[k]));
-            err = std::max(err, std::abs(run[0].w[k] - run[0].w_ref[k]));
             if (!b.intact[k]) {
                 ASSERT_EQ(run[0].w[k], 0.0) << name << " broken bond " << k;
             }
         }
+        const auto [wmax, err] = largest_and_error(run[0]);
         EXPECT_GT(wmax, 0.0) << name;
         EXPECT_LT(err, 1e-12 * wmax) << name;
         std::printf("%-28s largest w %.3e J/m^6, largest difference from the reference %.2e of it\n", name, wmax, err / wmax);
@@ -159,11 +169,7 @@ TEST(Micropotential, TwoDimensionalCorrespondenceWithAndWithoutHourglassWork)
         CriticalMicropotential<2> mp;
         mp.hourglass_work = hourglass_work;
         const Loading run = random_loading(make_corr<2>(0.02)(body, b), body, b, mp, hourglass_work ? nullptr : &no_hourglass);
-        double wmax = 0, err = 0;
-        for (std::size_t k = 0; k < b.size(); ++k) {
-            wmax = std::max(wmax, std::abs(run.w_ref[k]));
-            err = std::max(err, std::abs(run.w[k] - run.w_ref[k]));
-        }
+        const auto [wmax, err] = largest_and_error(run);
         EXPECT_GT(wmax, 0.0);
         EXPECT_LT(err, 1e-12 * wmax) << "hourglass work " << hourglass_work;
     }
@@ -203,12 +209,8 @@ TEST(Micropotential, BodyWithoutBondsRuns)
     Bonds b = build_bonds(body, 0.5 * dx);
     ASSERT_EQ(b.size(), 0u);
     b.enable_damage();
-    PMB pmb({steel, 3}, Influence{}, b);
-    CriticalMicropotential<3> mp;
-    mp.w_c = 1.0;
-    Explicit<3, PMB> ex(body, b, pmb, 7850);
-    ex.micropotential = &mp;
-    ex.start();
-    for (int n = 0; n < 3; ++n) ex.step(1e-8);
+    ExplicitPMBMicropotential run(body, b, 1.0);
+    run.ex.start();
+    for (int n = 0; n < 3; ++n) run.ex.step(1e-8);
     EXPECT_TRUE(b.has_damage());
 }
