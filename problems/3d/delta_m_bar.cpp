@@ -37,6 +37,8 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <tuple>
+#include <utility>
 
 namespace {
 
@@ -64,6 +66,24 @@ struct Material { pd::Elastic mat; double rho, Gc, C_hg, rate, dt_factor; bool h
 // The first broken bond: time [s] (NAN: none), wall time [s], distances of its midpoint from the nearer
 // end and from the nearest lateral face [m].
 struct Fracture { double t, wall, from_end, from_face; };
+
+// Distances of the midpoint of the first broken bond (in CSR order) from the nearer end and from the
+// nearest lateral face of the lattice (box() rounds L/dx and W/dx to whole cells) [m].
+std::pair<double, double> first_break_position(const pd::Body<3>& body, const pd::Bonds& bonds)
+{
+    for (std::size_t i = 0; i < body.size(); ++i)
+        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
+            if (bonds.intact[k]) continue;
+            const pd::Vec<3> mid = 0.5 * (body.x[i] + body.x[bonds.partner[k]]);
+            double d[3];
+            for (int a = 0; a < 3; ++a) {
+                const auto [lo, hi] = std::minmax_element(body.x.c[a].begin(), body.x.c[a].end());
+                d[a] = std::min(mid[a] - (*lo - body.dx / 2), *hi + body.dx / 2 - mid[a]);
+            }
+            return {d[0], std::min(d[1], d[2])};
+        }
+    return {NAN, NAN};
+}
 
 // One cell: the bar pulled to strain_end at the given rate, until 5 us after the first broken bond.
 Fracture fracture_time(const Material& p, double delta, double m, bool micro)
@@ -105,19 +125,7 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro)
         ex.step(dt);
         if (std::isnan(t_break) && ex.broken_bonds > 0) {
             t_break = ex.t;
-            for (std::size_t i = 0; i < body.size(); ++i)
-                for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k)
-                    if (!bonds.intact[k] && std::isnan(from_end)) {
-                        // from the lattice's own faces (box() rounds L/dx and W/dx to whole cells)
-                        const pd::Vec<3> mid = 0.5 * (body.x[i] + body.x[bonds.partner[k]]);
-                        double d[3];
-                        for (int a = 0; a < 3; ++a) {
-                            const auto [lo, hi] = std::minmax_element(body.x.c[a].begin(), body.x.c[a].end());
-                            d[a] = std::min(mid[a] - (*lo - dx / 2), *hi + dx / 2 - mid[a]);
-                        }
-                        from_end = d[0];
-                        from_face = std::min(d[1], d[2]);
-                    }
+            std::tie(from_end, from_face) = first_break_position(body, bonds);
         }
     }
     return {t_break, timer.seconds(), from_end, from_face};
