@@ -1,10 +1,12 @@
 // problems/2d/kalthoff_winkler.cpp -- Kalthoff-Winkler edge impact on a double-notched steel plate,
 // 2D plane-strain PMB with critical stretch (spec/002 sec. 7.3, case V9).
-// Case: plate 200 x 100 mm [inferred in spec/002], two notches from the left edge, 50 mm long,
-// 50 mm apart, symmetric about the mid-line (bonds crossing them broken); the left-edge node row
-// between the notches moves at v = 16.5 m/s (prescribed velocity: half the 33 m/s impact speed,
-// equal impedances); all other edges free. Steel 18Ni1900: E 190 GPa, rho 8000 kg/m^3,
-// Gc 22170 J/m^2, plane strain (PMB: nu = 1/4). m = 3, PA-PDLAMMPS volumes, 90 us.
+// Case: plate 100 mm along the impact (x) by 200 mm across it (y) (spec/002 infers "200 x 100 mm"
+// from the 5,000 nodes at 2 mm; the orientation is Kalthoff's specimen: notch length = half the
+// plate's depth), two notches from the left edge, 50 mm long, 50 mm apart, symmetric about the
+// mid-line (bonds crossing them broken); the left-edge node row between the notches moves at
+// v = 16.5 m/s (prescribed velocity: half the 33 m/s impact speed, equal impedances); all other
+// edges free. Steel 18Ni1900: E 190 GPa, rho 8000 kg/m^3, Gc 22170 J/m^2, plane strain (PMB:
+// nu = 1/4). m = 3, PA-PDLAMMPS volumes, 90 us.
 // Reference: spec/002 Table/text of sec. 7.3 (adaptive level-1 PD, finest dx = 1 mm): crack
 // initiation ~24 us, straight crack at 68 deg (experiment ~70 deg), v_max 1981 m/s = 71 % of the
 // Rayleigh speed c_R = 2799.2 m/s (XFEM: 75 %).
@@ -43,8 +45,8 @@ static int run(int argc, char** argv)
     double& rho = opt.add("rho", 8000, "density", "kg/m^3");
     double& Gc = opt.add("Gc", 22170, "fracture energy", "J/m^2");
     double& v_imp = opt.add("v", 16.5, "prescribed velocity of the impacted edge between the notches", "m/s");
-    double& L = opt.add("length", 0.2, "plate length (x)", "m");
-    double& H = opt.add("height", 0.1, "plate height (y)", "m");
+    double& L = opt.add("length", 0.1, "plate depth along the impact (x)", "m");
+    double& H = opt.add("height", 0.2, "plate height across the impact (y)", "m");
     double& a0 = opt.add("notch", 0.05, "notch length from the left edge", "m");
     double& gap = opt.add("notch-distance", 0.05, "distance between the notches (symmetric about the mid-line)", "m");
     opt.add_string("dx-list", "1e-3,2e-3", "lattice spacings (quick: 1e-3 to 50 us)");
@@ -178,14 +180,16 @@ static int run(int argc, char** argv)
 
     // Tolerances: both crack angles within 10 deg of +-68 (the published value comes from an
     // adaptive grid; our uniform grid has weak bond directions at 63.4 and 71.6 deg near it:
-    // spec/002 sec. 6.2), the tip slower than c_R, initiation within 50 % of 24 us (our tip rule
-    // and the published one may differ by a few dx of growth). The up/down asymmetry is reported,
-    // not checked.
+    // spec/002 sec. 6.2), the tip faster than c_R / 2 (a running crack: 71 % PD, 75 % XFEM) and
+    // slower than c_R, initiation within 25 % of 24 us (our tip rule and the published one may
+    // differ by a few dx of growth, about 1 us each at the early tip speed). The up/down asymmetry
+    // is reported, not checked.
     pd::io::Checks check;
     check(std::abs(r.angle_up - angle_pub) <= 10, "upper crack angle within 10 deg of 68 deg");
     check(std::abs(r.angle_low + angle_pub) <= 10, "lower crack angle within 10 deg of -68 deg");
     check(r.v_max < cR && r.v_max_low < cR, "maximum tip speeds below the Rayleigh speed");
-    check(relative_error(r.t_init, t_pub) <= 0.5, "initiation within 50 % of 24 us");
+    check(r.v_max > cR / 2 && r.v_max_low > cR / 2, "maximum tip speeds above half the Rayleigh speed");
+    check(relative_error(r.t_init, t_pub) <= 0.25, "initiation within 25 % of 24 us");
     std::printf("%s: dx %.3g mm: initiation %.2f us (24), angle %.1f / %.1f deg (68), v_max %.0f m/s = %.0f %% c_R (71 %%)\n",
                 check.passed() ? "PASS" : "FAIL", r.dx * 1e3, r.t_init * 1e6, r.angle_up, r.angle_low, r.v_max, 100 * r.v_max / cR);
     return opt.get_flag("check") && !check.passed() ? 1 : 0;
