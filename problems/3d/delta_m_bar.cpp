@@ -2,8 +2,10 @@
 // time of a bar in uniform tension, critical stretch vs critical micropotential (Biondani 2018 sec. 8.5;
 // spec/000c sec. 2.9, V11, erratum 10-11). Bar 1 x 1 x 5 mm (x the long axis), Si3N4 (E 310 GPa, nu 0.29,
 // Gc = J_C 109.94 J/m^2, rho 3200 kg/m^3 assumed), correspondence linear law with hourglass 0.02 (the
-// source does not state it), end layers of width delta clamped and pulled apart to engineering strain
-// 0.002 in 100 us (20 1/s), no-fail within 1 mm of each end, dt = 0.5 x Silling-Askari.
+// source does not state it), grips of ceil(delta/dx) layers added outside both ends (the thesis'
+// fictitious constraint domain of thickness >= delta, 000a sec. 3.6), clamped and pulled apart to
+// engineering strain 0.002 of the 5 mm bar in 100 us (20 1/s), no-fail in the grips and within 1 mm
+// of each end of the bar, dt = 0.5 x Silling-Askari.
 // Damage: stretch s0 = MO 3D (000c eq. 8.11; = PMB at the quasi-static estimate's accuracy),
 // micropotential w_C = 4 J_C/(pi delta^4) (8.15). Fracture time = first broken bond; the run stops
 // 5 us later.
@@ -15,6 +17,8 @@
 //   [--no-hourglass-work] [--lateral-free] [--quick] [--check] [--out DIR]
 // --rate: the pull still ends at strain 0.002 (at 0.002/rate); the published times hold for 20 1/s only.
 // --lateral-free: the grips prescribe only the axial displacement (the lateral contraction is free).
+// --grips inside: the end layers of width delta of the 5 mm bar itself are the grips (this driver
+// until 2026-11-25: the free part then strains 1.1-1.3x the nominal strain).
 // --no-hourglass-work: the micropotential leaves out the work of the hourglass forces, as Peridigm's
 // (000c sec. 2.3 [CODE]); the default includes them (the work of the whole bond force).
 // Writes: fracture_times.csv (delta, m, criterion, ours, published, quasi-static, wall, grip strain at the
@@ -62,25 +66,25 @@ double published(double delta, double m, bool micro)
 
 constexpr double strain_end = 0.002;  // engineering strain at the end of the pull [-]
 
-struct Material { pd::Elastic mat; double rho, Gc, C_hg, rate, dt_factor; bool hourglass_work, lateral_free; };
+struct Material { pd::Elastic mat; double rho, Gc, C_hg, rate, dt_factor; bool hourglass_work, lateral_free, grips_inside; };
 // The first broken bond: time [s] (NAN: none), wall time [s], distances of its midpoint from the nearer
 // end and from the nearest lateral face [m].
 struct Fracture { double t, wall, from_end, from_face; };
 
-// Distances of the midpoint of the first broken bond (in CSR order) from the nearer end and from the
-// nearest lateral face of the lattice (box() rounds L/dx and W/dx to whole cells) [m].
-std::pair<double, double> first_break_position(const pd::Body<3>& body, const pd::Bonds& bonds)
+// Distances of the midpoint of the first broken bond (in CSR order) from the nearer end of the bar
+// [x_lo, x_hi] and from the nearest lateral face of the lattice (box() rounds W/dx to whole cells) [m].
+std::pair<double, double> first_break_position(const pd::Body<3>& body, const pd::Bonds& bonds, double x_lo, double x_hi)
 {
     for (std::size_t i = 0; i < body.size(); ++i)
         for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
             if (bonds.intact[k]) continue;
             const pd::Vec<3> mid = 0.5 * (body.x[i] + body.x[bonds.partner[k]]);
             double d[3];
-            for (int a = 0; a < 3; ++a) {
+            for (int a = 1; a < 3; ++a) {
                 const auto [lo, hi] = std::minmax_element(body.x.c[a].begin(), body.x.c[a].end());
                 d[a] = std::min(mid[a] - (*lo - body.dx / 2), *hi + body.dx / 2 - mid[a]);
             }
-            return {d[0], std::min(d[1], d[2])};
+            return {std::min(mid[0] - x_lo, x_hi - mid[0]), std::min(d[1], d[2])};
         }
     return {NAN, NAN};
 }
@@ -90,20 +94,32 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro)
 {
     const pd::io::Timer timer;
     const double L = 5e-3, W = 1e-3, dx = delta / m, t_max = strain_end / p.rate;
-    const pd::Body<3> body = pd::box<3>({{0, 0, 0}}, {{L, W, W}}, dx);
+    // Grips outside the bar [0, Lb] (Lb = L rounded to whole cells, so that both grips have
+    // ceil(delta/dx) layers), or the end layers of the bar (--grips inside).
+    pd::GrippedBar bar;
+    double x_lo = 0, x_hi = std::lround(L / dx) * dx;  // ends of the bar [m]
+    double gauge = x_hi, x_protect = x_hi;              // pulled length, reference of the far no-fail zone [m]
+    if (p.grips_inside) {
+        bar.body = pd::box<3>({{0, 0, 0}}, {{L, W, W}}, dx);
+        const double x_max = *std::max_element(bar.body.x.c[0].begin(), bar.body.x.c[0].end());
+        x_hi = x_max + dx / 2, gauge = L, x_protect = x_max;  // as this driver computed them before
+        for (std::size_t i = 0; i < bar.body.size(); ++i) {
+            if (bar.body.x.c[0][i] < delta) bar.left.push_back(static_cast<int>(i));
+            if (bar.body.x.c[0][i] > x_max - delta) bar.right.push_back(static_cast<int>(i));
+        }
+    } else {
+        bar = pd::gripped_bar(x_hi, W, W, dx, delta);
+    }
+    const pd::Body<3>& body = bar.body;
+    const pd::NodeSet &left = bar.left, &right = bar.right;
     pd::Bonds bonds = pd::build_bonds(body, delta);
     bonds.enable_damage();
     C3 model({p.mat, C3::Law::linear, p.C_hg}, body, bonds);
     pd::Explicit<3, C3> ex(body, bonds, model, p.rho);
-    pd::NodeSet left, right, protect;
-    const double x_max = *std::max_element(body.x.c[0].begin(), body.x.c[0].end());
-    for (std::size_t i = 0; i < body.size(); ++i) {
-        const double x = body.x.c[0][i];
-        if (x < delta) left.push_back(static_cast<int>(i));
-        if (x > x_max - delta) right.push_back(static_cast<int>(i));
-        if (x < 1e-3 || x > x_max - 1e-3) protect.push_back(static_cast<int>(i));
-    }
-    const double u_end = 0.5 * strain_end * L;  // grip displacement at t_max [m]
+    pd::NodeSet protect;  // no-fail: within 1 mm of each end of the bar, grips included
+    for (std::size_t i = 0; i < body.size(); ++i)
+        if (body.x.c[0][i] < x_lo + 1e-3 || body.x.c[0][i] > x_protect - 1e-3) protect.push_back(static_cast<int>(i));
+    const double u_end = 0.5 * strain_end * gauge;  // grip displacement at t_max [m]
     for (int d = 0; d < (p.lateral_free ? 1 : 3); ++d) {
         const double g = d == 0 ? u_end : 0;
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, left, d, pd::TimeFunction::ramp(-g, t_max)});
@@ -125,7 +141,7 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro)
         ex.step(dt);
         if (std::isnan(t_break) && ex.broken_bonds > 0) {
             t_break = ex.t;
-            std::tie(from_end, from_face) = first_break_position(body, bonds);
+            std::tie(from_end, from_face) = first_break_position(body, bonds, x_lo, x_hi);
         }
     }
     return {t_break, timer.seconds(), from_end, from_face};
@@ -145,6 +161,8 @@ int run(int argc, char** argv)
     opt.add("C-hg", 0.02, "hourglass coefficient (assumed)", "-");
     opt.add_flag("no-hourglass-work", "micropotential without the work of the hourglass forces (Peridigm's)");
     opt.add_flag("lateral-free", "grips prescribe the axial displacement only (default: clamped, all three)");
+    std::string& grips = opt.add_string("grips", "outside", "grip layers added outside the bar, or the bar's own end layers",
+                                        {"outside", "inside"});
     opt.add("rate", 20, "engineering strain rate", "1/s");
     opt.add("dt-factor", 0.5, "safety factor on the Silling-Askari step", "-");
     pd::io::add_standard(opt, "reports/3d/delta_m_bar");
@@ -174,7 +192,7 @@ int run(int argc, char** argv)
     opt.save_csv(out + "/params.csv");
     const Material p{pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu")), opt.get("rho"), opt.get("Gc"), opt.get("C-hg"),
                      opt.get("rate"), opt.get("dt-factor"), !opt.get_flag("no-hourglass-work"),
-                     opt.get_flag("lateral-free")};
+                     opt.get_flag("lateral-free"), grips == "inside"};
 
     // 2-5. Every cell, both criteria.
     pd::io::Checks check;
