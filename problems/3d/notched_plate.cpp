@@ -2,11 +2,11 @@
 // critical micropotential vs micropotential with numerical viscosity (Biondani 2018 sec. 8.4.1-8.4.3;
 // spec/000c sec. 2.6-2.8, V10). Plate 10 x 10 x 1 mm, notch at y = 5 mm from x = 0 to 5 mm (cut bonds,
 // zero width: the source gives no width), E 310 GPa, nu 0.29, Gc = J_C 109.94 J/m^2, rho 3200 kg/m^3
-// (ASSUMED: the source gives none), delta 0.75 mm (default 1.5 mm: the published grid, 8x the nodes and
-// 2x the steps, is the full-size case of problems/cases.txt), m 3.05, correspondence (linear law; Flanagan-Taylor
-// inside the viscoelastic wrapper) with hourglass 0.02. Grips: layers of width delta at y = 0 and
-// y = 10 mm, clamped, pulled apart with a linear ramp to strain 0.0008 over --t-ramp (default: the whole
-// 500 us; the source is ambiguous); no-fail within --no-fail of each end. dt = 0.5 x Silling-Askari.
+// (ASSUMED: none in the source), delta 0.75 mm (default 1.5 mm; the published grid is in problems/cases.txt),
+// m 3.05, correspondence (linear law; Flanagan-Taylor inside the viscoelastic wrapper) with hourglass 0.02.
+// Grips: ceil(delta/dx) layers outside y = 0 and 10 mm (000a sec. 3.6; --grips inside: the plate's own end
+// layers, as until 2026-11-25), clamped, ramped to strain 0.0008 over --t-ramp (default: the whole 500 us;
+// the source is ambiguous); no-fail in the grips and within --no-fail of each end. dt = 0.5 x Silling-Askari.
 // Damage: stretch s0 = MO 3D (000c eq. 8.11), micropotential w_C = 4 J_C/(pi delta^4) (8.15),
 // numerical viscosity gamma_b = eta^2 - 1, tau_b = 1/(2 pi eta c_S/dx) (8.29).
 // Measured: fracture start = first broken bond; end = the crack tip (largest x of a node whose damage
@@ -43,7 +43,7 @@ using C3 = pd::Correspondence<3>;
 struct Setup {
     pd::Body<3> body;
     double L = 0, thick = 0, a = 0, y_notch = 0, delta = 0, dx = 0, rho = 0, strain = 0, t_ramp = 0, t_end = 0, dt = 0;
-    double no_fail = 0;
+    double no_fail = 0, gauge = 0;  // no-fail band, pulled length between the grips [m]
     long sample = 50;
     pd::NodeSet bottom, top, protect;
     pd::Elastic mat;
@@ -75,11 +75,10 @@ Result run_case(const Setup& s, const std::string& name, const std::string& dama
     pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta), .s0_bond = {}, .no_fail = {}};
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(s.Gc, s.delta);
-    cs.protect(s.protect, s.body.size());
-    mp.protect(s.protect, s.body.size());
+    cs.protect(s.protect, s.body.size()), mp.protect(s.protect, s.body.size());
     if (damage == "stretch") ex.damage = &cs;
     if (damage == "micro") ex.micropotential = &mp;
-    const double stretch = 0.5 * s.strain * s.L;  // grip displacement at the end of the ramp [m]
+    const double stretch = 0.5 * s.strain * s.gauge;  // grip displacement at the end of the ramp [m]
     for (int d = 0; d < 3; ++d) {
         const double g = d == 1 ? stretch : 0;
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, s.bottom, d, pd::TimeFunction::ramp(-g, s.t_ramp)});
@@ -138,6 +137,7 @@ int run(int argc, char** argv)
     opt.add("t-ramp", 500e-6, "ramp duration", "s");
     opt.add("t-end", 500e-6, "final time", "s");
     opt.add("no-fail", 3e-3, "no-fail band from each gripped end (2 delta)", "m");
+    opt.add_string("grips", "outside", "grip layers added outside the plate, or the plate's own end layers", {"outside", "inside"});
     opt.add("dt-factor", 0.5, "safety factor on the Silling-Askari step", "-");
     opt.add_int("sample", 50, "steps between damage samples");
     pd::io::add_standard(opt, "reports/3d/notched_plate");
@@ -157,15 +157,18 @@ int run(int argc, char** argv)
     const std::string out = opt.get_string("out");
     opt.save_csv(out + "/params.csv");
 
-    // 2. Discretisation (default delta 1.5 mm: 20 x 20 x 2 nodes; --quick: ramp 150 us, end 120 us).
+    // 2. Discretisation (default delta 1.5 mm: 20 x 20 x 2 nodes; --quick: ramp 150 us, end 120 us); grips
+    //    outside [0, Lb] in y (Lb = L in whole cells): y < 0 and y > Lb, or inside (--grips inside).
     Setup s;
     s.mat = pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu"));
-    s.delta = opt.get("delta");
-    s.dx = s.delta / opt.get("m");
+    s.delta = opt.get("delta"), s.dx = s.delta / opt.get("m");
     s.L = opt.get("L"), s.thick = opt.get("thickness"), s.a = s.L / 2, s.rho = opt.get("rho"), s.Gc = opt.get("Gc");
     s.strain = opt.get("strain"), s.t_ramp = quick ? 150e-6 : opt.get("t-ramp"), s.t_end = quick ? 120e-6 : opt.get("t-end");
     s.no_fail = opt.get("no-fail"), s.C_hg = opt.get("C-hg"), s.sample = opt.get_int("sample");
-    s.body = pd::box<3>({{0, 0, 0}}, {{s.L, s.L, s.thick}}, s.dx);
+    const bool inside = opt.get_string("grips") == "inside";
+    const double Lb = std::lround(s.L / s.dx) * s.dx, g = inside ? 0 : std::ceil(s.delta / s.dx * (1 - 1e-10)) * s.dx;  // [m]
+    s.body = pd::box<3>({{0, -g, 0}}, {{s.L, Lb + g, s.thick}}, s.dx);
+    const double y_bottom = inside ? s.delta : 0, y_top = inside ? s.L - s.delta : Lb, y_end = s.gauge = inside ? s.L : Lb;
     double y_lo = -HUGE_VAL, y_hi = HUGE_VAL;  // notch plane: between the two node layers nearest y = L/2
     for (double y : s.body.x.c[1]) {
         if (y <= 0.5 * s.L) y_lo = std::max(y_lo, y);
@@ -174,9 +177,9 @@ int run(int argc, char** argv)
     s.y_notch = 0.5 * (y_lo + y_hi);
     for (std::size_t i = 0; i < s.body.size(); ++i) {
         const double y = s.body.x.c[1][i];
-        if (y < s.delta) s.bottom.push_back(static_cast<int>(i));
-        if (y > s.L - s.delta) s.top.push_back(static_cast<int>(i));
-        if (y < s.no_fail || y > s.L - s.no_fail) s.protect.push_back(static_cast<int>(i));
+        if (y < y_bottom) s.bottom.push_back(static_cast<int>(i));
+        if (y > y_top) s.top.push_back(static_cast<int>(i));
+        if (y < s.no_fail || y > y_end - s.no_fail) s.protect.push_back(static_cast<int>(i));
     }
     {
         const pd::Bonds b = pd::build_bonds(s.body, s.delta);
