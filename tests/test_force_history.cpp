@@ -21,7 +21,7 @@ TEST(ForceHistory, WindowMeanRemovesRingingOfWholePeriods)
     ASSERT_EQ(w.mean.size(), 4u);
     for (std::size_t k = 0; k < 4; ++k) {
         const double t_mid = (k + 0.5) * 0.25e-3;
-        EXPECT_NEAR(w.t_mid_s[k], t_mid, 1e-12);
+        EXPECT_NEAR(w.t_mid_s[k], t_mid, 1e-12);  // round-off of 250 summed 1 us steps, ~1e-17 s
         // Rectangle rule on the right ends of the steps: the linear part's mean is taken at
         // t_mid + dt/2, i.e. 50 N/ms * 0.5 us = 0.025 N above 100 + 50 t_mid.
         EXPECT_NEAR(w.mean[k], 100 + 50 * t_mid * 1e3 + 0.025, 1e-9) << k;

@@ -83,13 +83,18 @@ NodeSet select(const Body<D>& body, const Region<D>& region, const std::string& 
     return s;
 }
 
+long grip_layers(double grip, double dx)
+{
+    // A grip of a whole number of cells must not gain a layer from the round-off of grip/dx:
+    // shrink by the relative tolerance of the horizon rule first.
+    constexpr double roundoff = 1e-10;
+    return static_cast<long>(std::ceil(grip / dx * (1 - roundoff)));
+}
+
 GrippedBar gripped_bar(double L, double W, double T, double dx, double grip)
 {
-    // A grip of a whole number of cells (e.g. 2 delta with integer m) must not gain a layer from
-    // the round-off of grip/dx: shrink by the relative tolerance of the horizon rule first.
-    constexpr double roundoff = 1e-10;
     GrippedBar bar;
-    bar.grip_layers = static_cast<long>(std::ceil(grip / dx * (1 - roundoff)));
+    bar.grip_layers = grip_layers(grip, dx);
     const double g = bar.grip_layers * dx;
     bar.body = box<3>({{-g, 0, 0}}, {{L + g, W, T}}, dx);
     bar.left = select<3>(bar.body, [](const Vec<3>& p) { return p[0] < 0; }, "left grip");

@@ -65,6 +65,10 @@ Region<2> in_polygon(Polygon poly);
 template <int D>
 NodeSet select(const Body<D>& body, const Region<D>& region, const std::string& what = "node set");
 
+// Number of lattice layers of a grip at least `grip` thick: ceil(grip/dx), a whole number of cells
+// (e.g. 2 delta with integer m) not gaining a layer from the round-off of grip/dx.
+long grip_layers(double grip, double dx);
+
 // Bar [0, L] x [0, W] x [0, T] (x axial) on a lattice dx, plus grip zones of ceil(grip/dx) layers
 // added OUTSIDE each end: `left` holds the nodes with x < 0, `right` those with x > L.
 struct GrippedBar {

@@ -79,12 +79,12 @@ std::pair<double, double> first_break_position(const pd::Body<3>& body, const pd
         for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
             if (bonds.intact[k]) continue;
             const pd::Vec<3> mid = 0.5 * (body.x[i] + body.x[bonds.partner[k]]);
-            double d[3];
+            double from_face = HUGE_VAL;  // lateral faces y, z
             for (int a = 1; a < 3; ++a) {
                 const auto [lo, hi] = std::minmax_element(body.x.c[a].begin(), body.x.c[a].end());
-                d[a] = std::min(mid[a] - (*lo - body.dx / 2), *hi + body.dx / 2 - mid[a]);
+                from_face = std::min({from_face, mid[a] - (*lo - body.dx / 2), *hi + body.dx / 2 - mid[a]});
             }
-            return {std::min(mid[0] - x_lo, x_hi - mid[0]), std::min(d[1], d[2])};
+            return {std::min(mid[0] - x_lo, x_hi - mid[0]), from_face};
         }
     return {NAN, NAN};
 }

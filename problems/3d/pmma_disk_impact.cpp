@@ -32,6 +32,7 @@
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -173,8 +174,7 @@ static int run(int argc, char** argv)
     std::printf("dt %.4g s, up to %ld steps\n", dt, static_cast<long>(std::ceil(t_end / dt)));
 
     // 4.-5. Impactor and integration.
-    double z_top = 0;  // top layer of points [m]
-    for (std::size_t i = 0; i < body.size(); ++i) z_top = std::max(z_top, body.x.c[2][i]);
+    const double z_top = *std::max_element(body.x.c[2].begin(), body.x.c[2].end());  // top layer of points [m]
     const Setup setup{body, clamp, rho, dt, t_end, v0, mass, 0.5 * tip_d, z_top, pd::Impactor<3>::default_penalty(E, dx, penalty), window, &cs};
     Outcome o;
     if (model_name == "pmb") { pd::PMB model(pmb, pd::Influence{}, bonds); o = simulate(model, bonds, setup, out); }
