@@ -9,7 +9,7 @@
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/heat_cvode.hpp"
 #include "pd/io/timer.hpp"
-#include "pd/time/verlet.hpp"  // pd::Unstable
+#include "pd/errors.hpp"
 
 #include <cmath>
 #include <functional>

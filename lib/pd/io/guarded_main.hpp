@@ -7,7 +7,7 @@
 //     int main(int argc, char** argv) { return pd::io::guarded_main("bar_modes_1d", [&] { return run(argc, argv); }); }
 #pragma once
 
-#include "pd/time/verlet.hpp"
+#include "pd/errors.hpp"
 
 #include <cstdio>
 #include <exception>

@@ -34,6 +34,7 @@
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
 #include "pd/damage/singular_nodes.hpp"
+#include "pd/errors.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,12 +45,6 @@
 #include <vector>
 
 namespace pd {
-
-struct Unstable : std::runtime_error {
-    long step;
-    int node;
-    Unstable(const std::string& what, long step, int node) : std::runtime_error(what), step(step), node(node) {}
-};
 
 struct Energies {
     double kinetic = 0, strain = 0, external_work = 0;  // [J]
