@@ -1,5 +1,5 @@
 // Contact: short-range repulsion between material points that are not bonded, and rigid
-// impactors (sphere, cylinder, flat punch) pressed on a body by penalty (issue 6; spec/001_004
+// impactors (sphere, cylinder, flat punch) pressed on a body by penalty (spec/001_004
 // B.5: the falling-weight impact on a PMMA disc). Both add a body-force density b [N/m^3] through
 // the extra-force hook of Explicit (time/verlet.hpp), so they enter its external-work bookkeeping.
 //

@@ -1,4 +1,4 @@
-// Random modulus and density (issue 6; spec/001_004 B.2 wires only the critical stretch s_c), from
+// Random modulus and density (spec/001_004 B.2 wires only the critical stretch s_c), from
 // the seeded fields of random_field.hpp. The PMB micromodulus is proportional to E at fixed nu
 // (pmb.hpp: c = 2 D^2 kappa / M_1, kappa proportional to E), so a modulus field enters as per-bond
 // factors f_k = E_k / E_mean for PMB::scale_bonds; the bond rule makes f symmetric (f_k equal on

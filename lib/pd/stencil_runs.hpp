@@ -1,4 +1,4 @@
-// Translation runs of bond families (issue 3, cost of correspondence; reports/3d/model_cost.md).
+// Translation runs of bond families (the cost of correspondence: reports/3d/model_cost.md).
 // On a lattice (x fastest, build_bonds sorts a family by partner index), the nodes of one x-row
 // away from the row's two ends have families that are translates of each other: node i + 1 has
 // the family of node i shifted by one index. Such nodes can be taken W at a time as the W lanes of

@@ -18,11 +18,11 @@
 // The increments are made inside the model's force pass (bond_loop.hpp, BondWork: the pass has f_k
 // in registers and reads the previous pass's g_k and positions), so no force is evaluated twice and
 // no second pass reads the bonds again.
-// Cost (issue 6; reports/3d/notched_plate.md, bench/damage_cost.cpp): per step, for the bonds i -> j
+// Cost (reports/3d/notched_plate.md, bench/damage_cost.cpp): per step, for the bonds i -> j
 // with j > i, the record (g, w) of 1 + 1 or D + 1 doubles is read and written (one stream: with g
 // and w in separate arrays the notched plate's step cost 10 % more); the breaking test reads the
 // records of the nodes whose largest w (from the pass) reached w_C only. Correspondence, notched
-// plate, per step before bonds break: 1.27-1.30x the stretch rule on the published grid (was 1.55x).
+// plate, per step before bonds break: 1.27-1.30x the stretch rule on the published grid.
 // Temperature-dependent J_C (000c sec. 2.4, eqs. 8.21-8.23, V9): with per-node ratios
 // r_i = J_C(theta_ref) / J_C(theta_i) set in `jc_ratio`, the increment is scaled by (r_i + r_j)/2 and
 // compared with w_C(theta_ref): each end weighted by its own temperature as in (8.23).

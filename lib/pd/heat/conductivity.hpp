@@ -1,4 +1,4 @@
-// Temperature-dependent conductivity k(theta) for the heat models (tracker issue 4; spec/000a
+// Temperature-dependent conductivity k(theta) for the heat models (spec/000a
 // sec. 3.9 for temperature-dependent properties). ConductivityOfTheta<Model> wraps a heat model built
 // with unit conductivity (k = 1 W/(m K)) and scales it by k(theta) [W/(m K)], a Property
 // (properties.hpp: constant, piecewise or table):

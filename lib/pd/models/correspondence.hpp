@@ -24,7 +24,7 @@
 // L = Fdot F^-1 is then exactly skew for a rigid rotation (Cayley), so no spurious stress. Peridigm pairs v_nph
 // with y_np1: a spurious expansion N (1 - cos(theta/N)) per rotation theta in N steps (2.8e-2 K of stress for
 // 90 degrees in 100 steps; tests/test_correspondence.cpp).
-// Cost (issue 3; reports/3d/model_cost.md): family sums are lane sums in the bond-loop order; the
+// Cost (reports/3d/model_cost.md): family sums are lane sums in the bond-loop order; the
 // i-end force P_i K_i^-1 sum_j omega xi V_j is summed once per node (node_force); the bond kernel
 // reads P_j K_j^-1 and F_j (18 values per bond). 3D with AVX2/FMA: vectorised within the bond
 // (correspondence_simd.hpp, `blocks`); undamaged, nodes with translated families (stencil_runs.hpp)

@@ -1,5 +1,5 @@
-// Per-node correspondence kernels vectorised within the bond (3D, AVX2 and FMA; issue 3, round 3
-// of reports/3d/model_cost.md), for the nodes that do not sit in a chunk (correspondence_chunks.hpp).
+// Per-node correspondence kernels vectorised within the bond (3D, AVX2 and FMA; reports/3d/model_cost.md),
+// for the nodes that do not sit in a chunk (correspondence_chunks.hpp).
 // Both give the arithmetic of the generic code (Correspondence::family_sums, Kernel::bond_force)
 // in its lanes and order (bond begin + l + 8 m to partial sum l, bond_loop.hpp):
 //   family_force_avx2    f_i of the bond kernel: the partner products A_j xi and (F_i + F_j) xi are

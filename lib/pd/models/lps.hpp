@@ -29,9 +29,9 @@
 // alpha_i = SCF_i a_D G / m_i with SCF_i from models/scf.hpp (Peridigm's probe); W and the force
 // both use alpha_i, so the force stays the gradient of W. Without it (the default) every member
 // and result is exactly as before; with SCF_i = 1 the forces are bit-identical to no correction.
-// Cost (issue 3; reports/3d/model_cost.md): internal_force uses Kernel (with_kernel), which reads
+// Cost (reports/3d/model_cost.md): internal_force uses Kernel (with_kernel), which reads
 // a_j = (p_j - alpha_j / D) theta_j and alpha_j precombined by point_pass instead of p_j, theta_j,
-// alpha_j, with no division by D per bond (2.07x PMB per step then, was 2.20x); bond_scalar still
+// alpha_j, with no division by D per bond; bond_scalar still
 // reads theta, p_coef and alpha, for callers that edit them between the passes. Nodes with
 // translated families (stencil_runs.hpp: same |xi| and omega V_j bond by bond) take both passes
 // W nodes at a time in undamaged scenes (dilatation_chunk, Kernel::chunk_scalar): about 1.5x PMB.

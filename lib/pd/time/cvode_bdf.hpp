@@ -1,5 +1,5 @@
 // SUNDIALS CVODE (variable-order BDF, Newton iterations) for a stiff ODE system y' = F(t, y) with a
-// sparse Jacobian dF/dy factorised by KLU: the third integrator of the PD heat equation (issue 4),
+// sparse Jacobian dF/dy factorised by KLU: the third integrator of the PD heat equation,
 // usable for any semi-discrete PD system whose Jacobian pattern is the bond graph.
 // The Jacobian callback fills an Eigen row-major sparse matrix at (t, y); its pattern may change
 // between calls (the SUNDIALS matrix is reallocated when it grows). An approximate Jacobian is
