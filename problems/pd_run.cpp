@@ -20,11 +20,8 @@
 // (files written before the blow-up are kept). User page: reports/pd_run.md.
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
-#include "pd/models/correspondence.hpp"
-#include "pd/models/lps.hpp"
-#include "pd/models/pals.hpp"
+#include "pd/models/registry.hpp"
 #include "pd/models/surface_correction.hpp"
-#include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_checks.hpp"
@@ -36,6 +33,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <type_traits>
 
 namespace {
 
@@ -77,31 +75,19 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     }
     std::fflush(stdout);
 
-    if (cfg.model == "pmb") {
-        pd::PMB model(pmb, cfg.influence, bonds);
-        pd::apply_surface_correction(model, body, bonds, cfg.surface);  // none: no change
+    // The model by name (models/registry.hpp); the surface correction of PMB (reference: its own
+    // bulk energy) or LPS (reference: the classical energy); none: no change.
+    const pd::ModelChoice choice{.name = cfg.model, .material = cfg.material, .plane = cfg.plane, .measure = cfg.measure,
+                                 .C_hg = cfg.hourglass, .influence = cfg.influence};
+    return pd::with_model(choice, body, bonds, [&](auto& model) {
+        using Model = std::decay_t<decltype(model)>;
+        if constexpr (std::is_same_v<Model, pd::PMB>) pd::apply_surface_correction(model, body, bonds, cfg.surface);
+        if constexpr (std::is_same_v<Model, pd::LPS>)
+            if (cfg.model == "lps")
+                pd::apply_surface_correction(model, body, bonds, cfg.surface,
+                                             {.reference = pd::SurfaceCorrectionOptions::Reference::classical});
         return integrate<D>(cfg, pc, body, bonds, model, heat.get());
-    }
-    if (cfg.model == "correspondence") {
-        if constexpr (D >= 2) {
-            pd::Correspondence<D> model({.material = cfg.material, .C_hg = cfg.hourglass, .plane = cfg.plane, .measure = cfg.measure},
-                                        body, bonds);
-            return integrate<D>(cfg, pc, body, bonds, model, heat.get());
-        }
-        fail("option --model correspondence needs --dim 2 or 3");
-    }
-    if (cfg.model == "pals") {
-        if constexpr (D == 3) {
-            pd::PALS model({.material = cfg.material}, body, bonds);
-            return integrate<D>(cfg, pc, body, bonds, model, heat.get());
-        }
-        fail("option --model pals needs --dim 3");
-    }
-    pd::LPS model({.material = cfg.material, .dim = D, .plane = cfg.plane}, bonds);
-    if (cfg.model == "scf") model.apply_shear_correction(body.x);  // LPS with the shear correction factor
-    const pd::SurfaceCorrectionOptions classical{.reference = pd::SurfaceCorrectionOptions::Reference::classical};
-    if (cfg.model == "lps") pd::apply_surface_correction(model, body, bonds, cfg.surface, classical);  // none: no change
-    return integrate<D>(cfg, pc, body, bonds, model, heat.get());
+    });
 }
 
 
@@ -113,8 +99,8 @@ int main(int argc, char** argv)
     const double automatic = std::numeric_limits<double>::quiet_NaN();
     pd::io::Options opt(program, "Explicit dynamics (velocity Verlet) and heat conduction of a point cloud read from CSV; see reports/pd_run.md.");
     const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed,no_fail,T0,T_fixed]");
-    const std::string& model = opt.add_string("model", "pmb", "material model (scf = LPS with the shear correction factor)",
-                                              {"pmb", "lps", "scf", "pals", "correspondence"});
+    const std::string& model = opt.add_string("model", "pmb", "material model (lps-scf or scf = LPS with the shear correction factor)",
+                                              {"pmb", "lps", "lps-scf", "scf", "pals", "correspondence"});
     const std::string& surface = opt.add_string("surface-correction", "none",
                                                 "surface correction of PMB or LPS (energy: Madenci-Oterkus; PMB needs --dx)", {"none", "energy"});
     const double& hourglass = opt.add("hourglass", 0.0, "Littlewood hourglass coefficient C_hg of correspondence (source: 0.02)");
@@ -158,6 +144,8 @@ int main(int argc, char** argv)
     if (opt.given("thickness") && dim != 2) fail("option --thickness applies to --dim 2 only");
     if (opt.given("area") && dim != 1) fail("option --area applies to --dim 1 only");
     if (pv == "pa-pdlammps" && !opt.given("dx")) fail("option --partial-volume pa-pdlammps needs --dx (the lattice spacing)");
+    if (model == "pals" && dim != 3) fail("option --model pals needs --dim 3");
+    if (model == "correspondence" && dim == 1) fail("option --model correspondence needs --dim 2 or 3");
     if (surface == "energy" && model == "pmb" && !opt.given("dx")) fail("option --surface-correction energy needs --dx (the lattice spacing)");
     if (surface == "energy" && model != "pmb" && model != "lps") fail("option --surface-correction energy applies to --model pmb or lps only");
     const bool mechanics = mech == "on";
@@ -169,7 +157,7 @@ int main(int argc, char** argv)
     Run cfg;
     cfg.plane = plane == "strain" ? pd::Plane::strain : pd::Plane::stress;
     if (mechanics) cfg.material = elastic_constants(opt, dim, cfg.plane);
-    cfg.model = model;
+    cfg.model = model == "scf" ? "lps-scf" : model;
     cfg.hourglass = hourglass;
     cfg.surface = pd::parse_surface_correction(surface);
     if (hourglass < 0) fail("option --hourglass must be >= 0, got " + pd::io::format_shortest(hourglass));

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
 #include <sys/wait.h>
 
 namespace {
@@ -114,4 +115,32 @@ TEST(DriverInputs, InvalidSolverOptionsExitTwo)
         EXPECT_EQ(lines(o.err), 1) << exe << " " << args << ": " << o.err;
         EXPECT_NE(o.err.find(name), std::string::npos) << exe << " " << args << ": " << o.err;
     }
+}
+
+// The driver skeleton (pd/io/case.hpp), for every driver of drivers.txt: an --out that cannot be a
+// folder (empty, an existing file) and a --threads beyond 4x the processors exit 2 with one line
+// naming the option, before any computation (each call returns at once).
+TEST(DriverInputs, EveryDriverRejectsUnusableOutAndThreads)
+{
+    std::ifstream list(std::string(PD_BIN_DIR) + "/../drivers.txt");
+    std::vector<std::string> drivers;
+    for (std::string exe; list >> exe;) drivers.push_back(exe);
+    ASSERT_GE(drivers.size(), 20u);  // every problems/<dim>/<case>.cpp (25 when written)
+    const std::string dir = pd_test::scratch_dir().string();
+    std::ofstream(dir + "/a_file") << "not a folder\n";
+    const std::pair<std::string, const char*> cases[] = {
+        {"--out ''", "--out"}, {"--out " + dir + "/a_file", "--out"}, {"--out " + dir + "/a_file/below", "--out"},
+        {"--threads 100000 --out " + dir + "/unused", "--threads"}};
+    for (const std::string& exe : drivers)
+        for (const auto& [args, name] : cases) {
+            const std::string err_path = dir + "/err.txt";
+            const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " --quick " + args + " > /dev/null 2> " + err_path;
+            const int rc = std::system(cmd.c_str());
+            std::ifstream in(err_path);
+            std::stringstream ss;
+            ss << in.rdbuf();
+            EXPECT_EQ(WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, 2) << exe << " " << args;
+            EXPECT_EQ(lines(ss.str()), 1) << exe << " " << args << ": " << ss.str();
+            EXPECT_NE(ss.str().find(name), std::string::npos) << exe << " " << args << ": " << ss.str();
+        }
 }

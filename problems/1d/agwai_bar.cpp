@@ -17,10 +17,8 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/time_to_reach.hpp"
 #include "pd/io/convergence.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
+#include "pd/io/case.hpp"
 #include "pd/lattice.hpp"
 #include "reference/heat_1d.hpp"
 
@@ -33,7 +31,7 @@ namespace {
 
 constexpr double T_start = 0, T_held = 100, T_target = 50;  // [C] (spec T7)
 
-struct Case {
+struct Bar {
     double k, rho, c, l, A, dt, t_max;  // [W/(m K)], [kg/m^3], [J/(kg K)], [m], [m^2], [s], [s]
     int m;
     bool half_volume;
@@ -46,7 +44,7 @@ struct Outcome {
 };
 
 // One PD bar of N cells: t50 with the given integrator (dt for Euler, step = rtol for CVODE).
-Outcome run_bar(const Case& cs, int N, pd::HeatIntegrator scheme, double step)
+Outcome run_bar(const Bar& cs, int N, pd::HeatIntegrator scheme, double step)
 {
     const double dx = cs.l / N, delta = cs.m * dx;
     auto body = pd::box<1>(pd::Vec<1>{-cs.m * dx}, pd::Vec<1>{cs.l + cs.m * dx}, dx, cs.A);  // bar + held cells
@@ -72,11 +70,11 @@ Outcome run_bar(const Case& cs, int N, pd::HeatIntegrator scheme, double step)
     return o;
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: spec/000b T7).
-    pd::io::Options opt("agwai_bar_1d", "1D transient conduction, Agwai PD vs classical (spec/000b T7).");
-    Case cs;
+    pd::io::Case run("agwai_bar_1d", "1D transient conduction, Agwai PD vs classical (spec/000b T7).", "reports/1d/agwai_bar");
+    pd::io::Options& opt = run.opt;
     opt.add("k", 50, "thermal conductivity", "W/(m K)");
     opt.add("rho", 7800, "density", "kg/m^3");
     opt.add("c", 502.08, "specific heat", "J/(kg K)");
@@ -88,21 +86,15 @@ int run(int argc, char** argv)
     opt.add_int("N", 0, "cells along the bar; 0 = the study N = 10 ... 1000");
     opt.add_string("integrator", "implicit", "integrator of a single run (--N)", {"implicit", "explicit", "cvode"});
     opt.add_string("volume", "half", "volume of the neighbour at |xi| = delta", {"half", "full"});
-    pd::io::add_standard(opt, "reports/1d/agwai_bar");
     for (const char* p : {"k", "rho", "c", "length", "area", "dt", "t-max"}) opt.require_positive(p);
     opt.require_at_least("m", 1);
     opt.require_at_least("N", 0);
-    opt.parse(argc, argv);
-    opt.echo(std::cout);
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
-    cs = {opt.get("k"), opt.get("rho"), opt.get("c"), opt.get("length"), opt.get("area"), opt.get("dt"),
+    run.start(argc, argv);
+    const Bar cs{opt.get("k"), opt.get("rho"), opt.get("c"), opt.get("length"), opt.get("area"), opt.get("dt"),
           opt.get("t-max"), opt.get_int("m"), opt.get_string("volume") == "half"};
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     pd::ref::HeatBar1D ref_bar{cs.l, cs.k / (cs.rho * cs.c), T_start, T_held};
     const double t50_exact = pd::ref::heat_bar_exact_time_to(ref_bar, 0.5 * cs.l, T_target);
-    pd::io::Checks check;
-    std::vector<pd::io::SummaryRow> summary;
 
     // 2. A single resolution (--N): t50 against the classical value of the same N and dt.
     if (opt.get_int("N") > 0) {
@@ -113,11 +105,10 @@ int run(int argc, char** argv)
         const double t50_fd = pd::ref::heat_bar_fd_time_to(ref_bar, N, cs.dt, 0.5 * cs.l, T_target);
         std::printf("N = %d (%s): t50 PD %.4f s, classical %.4f s, exact %.4f s, %.3f s wall\n", N,
                     pd::name(scheme), o.reach.t, t50_fd, t50_exact, o.reach.wall_s);
-        summary = {{"t50", o.reach.t, t50_fd, pd::io::relative_error(o.reach.t, t50_fd), "s"},
-                   {"t50_exact_continuum", t50_exact, 74.163, pd::io::relative_error(t50_exact, 74.163), "s"}};
-        check(o.reach.t > t50_fd, "PD diffuses more slowly than classical (source, Fig. 6.1)");
-        pd::io::write_summary(out + "/summary.csv", summary);
-        return opt.get_flag("check") && !check.passed() ? 1 : 0;
+        run.summary({{"t50", o.reach.t, t50_fd, pd::io::relative_error(o.reach.t, t50_fd), "s"},
+                     {"t50_exact_continuum", t50_exact, 74.163, pd::io::relative_error(t50_exact, 74.163), "s"}});
+        run.check(o.reach.t > t50_fd, "PD diffuses more slowly than classical (source, Fig. 6.1)");
+        return run.finish("N = %d: t50 PD %.4f s (classical %.4f s)", N, o.reach.t, t50_fd);
     }
 
     // 3. The N study (implicit Euler, dt = 10 s): ours, source PD, spec reconstruction, classical.
@@ -135,20 +126,20 @@ int run(int argc, char** argv)
                    .error = (o.reach.t - fd) / fd, .wall_s = o.reach.wall_s, .extras = {o.reach.t, fd, src, rec}});
     }
     table.print(std::cout);
-    table.write_csv(out + "/convergence.csv");
+    table.write_csv(run.file("convergence.csv"));
     const double rate = table.rate(Ns.size() - 1);
-    check(rate > 0.9 && rate < 1.1, "first-order convergence to classical (finest pair rate in 0.9..1.1)");
+    run.check(rate > 0.9 && rate < 1.1, "first-order convergence to classical (finest pair rate in 0.9..1.1)");
     // The spec's reconstruction of the same convention, printed to 4-5 digits.
     for (const auto& [N, rec] : recon_pd)
-        if (ours.count(N)) check(std::abs(ours[N] - rec) <= 0.006 * rec, ("t50 = spec reconstruction within its printed digits, N = " + std::to_string(N)).c_str());
-    for (const auto& [N, t] : ours) summary.push_back({"t50_N" + std::to_string(N), t, source_pd.at(N), pd::io::relative_error(t, source_pd.at(N)), "s"});
-    summary.push_back({"rate_t50", rate, 1, std::abs(rate - 1), "-"});
-    summary.push_back({"t50_exact_continuum", t50_exact, 74.163, pd::io::relative_error(t50_exact, 74.163), "s"});
+        if (ours.count(N)) run.check(std::abs(ours[N] - rec) <= 0.006 * rec, ("t50 = spec reconstruction within its printed digits, N = " + std::to_string(N)).c_str());
+    for (const auto& [N, t] : ours) run.summary({"t50_N" + std::to_string(N), t, source_pd.at(N), pd::io::relative_error(t, source_pd.at(N)), "s"});
+    run.summary({"rate_t50", rate, 1, std::abs(rate - 1), "-"});
+    run.summary({"t50_exact_continuum", t50_exact, 74.163, pd::io::relative_error(t50_exact, 74.163), "s"});
 
     // 4. Work-precision at one N: error of t50 against the time-converged PD value, and wall time.
     const int Nw = quick ? 50 : 200;
     const double t_ref = run_bar(cs, Nw, pd::HeatIntegrator::cvode, 1e-11).reach.t;
-    pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t50_s"});
+    pd::io::CsvWriter wp(run.file("work_precision.csv"), {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t50_s"});
     const double dt_crit = run_bar(cs, Nw, pd::HeatIntegrator::cvode, 1e-6).dt_crit;
     std::printf("work-precision, N = %d (thermal critical step %.4g s, reference t50 %.9f s):\n", Nw, dt_crit, t_ref);
     // dt_s: the fixed step, for CVODE the mean internal step t50/steps; rtol: CVODE's tolerance.
@@ -166,14 +157,11 @@ int run(int argc, char** argv)
     std::vector<double> e_imp;
     for (double dt : {10.0, 5.0, 2.5, 1.25}) e_imp.push_back(record(pd::HeatIntegrator::implicit_euler, dt));
     for (double tol : {1e-4, 1e-6, 1e-8}) record(pd::HeatIntegrator::cvode, tol);
-    check(std::abs(e_imp[2] / e_imp[3] - 2) < 0.2, "implicit Euler first order in dt (error ratio 2 +- 0.2)");
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: PD t50 at N = %d: %.3f s (classical %.3f s, source %.3f s); rate %.2f\n",
-                check.passed() ? "PASS" : "FAIL (see the checks above)", Ns.back(), ours[Ns.back()],
-                pd::ref::heat_bar_fd_time_to(ref_bar, Ns.back(), cs.dt, 0.5 * cs.l, T_target), source_pd.at(Ns.back()), rate);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.check(std::abs(e_imp[2] / e_imp[3] - 2) < 0.2, "implicit Euler first order in dt (error ratio 2 +- 0.2)");
+    return run.finish("PD t50 at N = %d: %.3f s (classical %.3f s, source %.3f s); rate %.2f", Ns.back(), ours[Ns.back()],
+                      pd::ref::heat_bar_fd_time_to(ref_bar, Ns.back(), cs.dt, 0.5 * cs.l, T_target), source_pd.at(Ns.back()), rate);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("agwai_bar_1d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("agwai_bar_1d", [&] { return run_case(argc, argv); }); }

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -65,7 +66,7 @@ std::vector<IntegratorRow> compare_integrators(const std::vector<std::pair<bool,
     return rows;
 }
 
-inline void write_integrators(const std::string& path, const std::vector<IntegratorRow>& rows)
+inline void write_integrators(const std::filesystem::path& path, const std::vector<IntegratorRow>& rows)
 {
     pd::io::CsvWriter csv(path, {"integrator", "dt_over_dt_SA", "dt_s", "steps", "f1_rel_error", "E1_T1", "E1", "hf_fraction",
                                  "hf_fraction_exact", "wall_s"});

@@ -23,11 +23,9 @@
 // Writes: convergence.csv, stability.csv, integrators.csv, summary.csv, history.csv (tip: PD, exact,
 //   FE), params.csv.
 // Exit: 2 invalid option, 3 a run became unstable (outside the stability study), 1 a check failed.
-#include "pd/io/checks.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
-#include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/stability_sweep.hpp"
 #include "reference/bar_1d_scores.hpp"
 
@@ -58,10 +56,11 @@ using bar_modes::run_pd;
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI; defaults = the source's case, spec/000b V1), validated, echoed and saved.
-    pd::io::Options opt("bar_modes_1d", "Fixed-free bar released from uniform strain: PD (LPS, PMB) vs classical.");
+    pd::io::Case run("bar_modes_1d", "Fixed-free bar released from uniform strain: PD (LPS, PMB) vs classical.", "reports/1d/bar_modes");
+    pd::io::Options& opt = run.opt;
     const double& E = opt.add("E", 200e9, "Young's modulus", "Pa");
     const double& rho = opt.add("rho", 7800, "density", "kg/m^3");
     const double& l = opt.add("length", 1.0, "bar length l", "m");
@@ -80,16 +79,13 @@ static int run(int argc, char** argv)
     const double& delta_fixed = opt.add("delta-fixed", 0.05, "horizon of the m-convergence study", "m");
     const std::string& integrator = opt.add_string("integrator", "verlet", "time integrator of the runs", {"verlet", "newmark"});
     const double& newmark_dt = opt.add("newmark-dt", 4, "Newmark dt / dt_SA (no safety factor; unconditionally stable)");
-    pd::io::add_standard(opt, "reports/1d/bar_modes");
     for (const char* p : {"E", "rho", "length", "area", "eps0", "dt-factor", "safety", "t-end", "delta-fixed", "newmark-dt"})
         opt.require_positive(p);
     opt.require_at_least("m", 1);
     opt.require_at_least("N", 5);         // the source's coarsest bar has 10 cells; below 5 no mode shape is left
     opt.require_at_least("samples", 10);  // the frequency fit and E1 need >= 10 samples per period
-    opt.parse(argc, argv);
-    const bool quick = opt.get_flag("quick"), single = opt.given("N");
-    const std::string out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
+    run.parse(argc, argv);
+    const bool quick = run.quick(), single = opt.given("N");
     const Bar bar{E, rho, l, A, eps0, pd::ref::bar_frequency(1, E, rho, l), samples, pd::Influence::parse(infl),
                   cal == "lattice" ? pd::PMB::Params::Calibration::lattice : pd::PMB::Params::Calibration::continuum,
                   integrator == "newmark"};
@@ -100,8 +96,7 @@ static int run(int argc, char** argv)
     // The frequency meter needs two periods after the first upward crossing (at 3/4 T1): t_end >= 3 T1.
     if (t_end < 3 / bar.f1) opt.fail("option --t-end must be >= 3 T1 = " + std::to_string(3 / bar.f1) + " s (frequency fit)");
     std::printf("bar_modes_1d: f1 = c/(4l) = %.3f Hz, T1 = %.5g s, t_end = %.5g s\n", bar.f1, 1 / bar.f1, t_end);
-    opt.echo(std::cout);
-    opt.save_csv(out + "/params.csv");
+    run.start();
     // 2-5. The runs; run_pd does 2. lattice and families, 3. model and dt, 4. clamp and u0, 5. Verlet.
     std::vector<std::tuple<std::string, std::string, int, int>> runs;  // study, model, N, m
     const std::vector<int> N_list = quick ? std::vector{20, 40, 80} : std::vector{10, 50, 100, 200, 500, 1000};
@@ -118,7 +113,6 @@ static int run(int argc, char** argv)
     pd::ref::BarScorer scorer(E, rho, l, eps0, fe_cvode_max_N, n_modes);
     std::map<std::string, std::pair<Run, pd::ref::BarScores>> finest;  // per model: the finest delta-study (or single) run
     double f1_cvode = NAN, dx_cvode = NAN;                              // the finest CVODE FE record
-    pd::io::Checks check;
     char verdict[200] = "";
     for (const auto& [study, mod, n, mm] : runs) {
         const Run r = run_pd(bar, mod, n, mm, dt_scale, t_end, false);
@@ -126,64 +120,64 @@ static int run(int argc, char** argv)
         table.add({.dx_m = r.dx, .delta_m = r.delta, .m = double(mm), .nodes = r.nodes, .bonds = r.bonds, .error = s.E1,
                    .wall_s = r.wall_s, .labels = {study, mod},
                    .extras = {s.f1, s.f1 / bar.f1 - 1, s.E1_T1, s.E1_fe, thesis_E1(mod, n, mm), r.dt, double(r.steps)}});
-        table.write_csv(out + "/convergence.csv");  // rewritten per row: the rows done survive an abort
+        table.write_csv(run.file("convergence.csv"));  // rewritten per row: the rows done survive an abort
         if (study == "m") continue;
         finest[mod] = {r, s};
         if (n <= fe_cvode_max_N) f1_cvode = s.f1_fe, dx_cvode = r.dx;
         if (study == "single" || (mod == "lps" && n == N)) {  // tip histories of the run at N
-            pd::io::CsvWriter csv(out + "/history.csv", {"t_s", "u_tip_m", "u_exact_m", "u_fe_m"}, false);
+            pd::io::CsvWriter csv(run.file("history.csv"), {"t_s", "u_tip_m", "u_exact_m", "u_fe_m"}, false);
             for (std::size_t j = 0; j < r.t_s.size(); ++j) csv.row({r.t_s[j], r.tip_m[j], s.exact[j], s.fe[j]});
         }
     }
     // 6. Compare with the references, write, print (the stability sweep first in the study mode).
     table.print(std::cout);
     const auto& [rf, sf] = finest.begin()->second;  // "lps" sorts first
-    std::vector<pd::io::SummaryRow> summary = {
+    run.summary({
         {"f1", sf.f1, bar.f1, pd::io::relative_error(sf.f1, bar.f1), "Hz"},
         {"E1_first_T1", sf.E1_T1, thesis_E1(finest.begin()->first, rf.N, rf.m), NAN, "-"},
         {"E1_window", sf.E1, NAN, NAN, "-"}, {"E1_vs_fe", sf.E1_fe, NAN, NAN, "-"},
         {"f1_fe_cvode", f1_cvode, bar.f1, pd::io::relative_error(f1_cvode, bar.f1), "Hz"}, {"dt", rf.dt, NAN, NAN, "s"},
-        {"dt_crit_SA", rf.dt_crit, NAN, NAN, "s"}, {"energy_growth", rf.growth, 1, NAN, "-"}};
+        {"dt_crit_SA", rf.dt_crit, NAN, NAN, "s"}, {"energy_growth", rf.growth, 1, NAN, "-"}});
     // f1 is first order in dx: the clamp layer and the free surface move the effective ends by O(dx)
     // (measured f1 error -1.0 dx/l for N = 50..1000, LPS and PMB); the tolerance allows 2 dx/l.
-    check(std::abs(sf.f1 / bar.f1 - 1) <= 2 * rf.dx / l, "f1 within 2 dx/l of c/(4l) (finest N of the study)");
+    run.check(std::abs(sf.f1 / bar.f1 - 1) <= 2 * rf.dx / l, "f1 within 2 dx/l of c/(4l) (finest N of the study)");
     std::snprintf(verdict, sizeof verdict, "%s f1 = %.3f Hz (%+.3f %%, E1 first T1 %.4f) at N = %d",
                   finest.begin()->first.c_str(), sf.f1, 100 * (sf.f1 / bar.f1 - 1), sf.E1_T1, rf.N);
     // Lumped linear FE: f1_h/f1 = sin(k1 dx/2)/(k1 dx/2), error (k1 dx)^2/24 (second order); 2x for the meter.
     const double kdx = std::numbers::pi / 2 * dx_cvode / l;  // k1 dx of the finest CVODE record
     if (!std::isnan(f1_cvode))
-        check(std::abs(f1_cvode / bar.f1 - 1) <= 2 * kdx * kdx / 24, "CVODE FE f1 within 2 (k1 dx)^2/24 of c/(4l)");
+        run.check(std::abs(f1_cvode / bar.f1 - 1) <= 2 * kdx * kdx / 24, "CVODE FE f1 within 2 (k1 dx)^2/24 of c/(4l)");
     if (!single) {
         // Stability: dt = factor * dt_SA exactly (no safety), N cells, 4 T1; threshold by bisection.
         std::vector<std::pair<std::string, pd::io::StabilityResult>> stab;
         for (const char* mod : {"pmb", "lps"}) {
-            auto run = [&](double f) {
+            auto at_factor = [&](double f) {
                 Bar explicit_bar = bar;  // the stability limit is the explicit one
                 explicit_bar.newmark = false;
                 const Run r = run_pd(explicit_bar, mod, N, m, f, guard_periods / bar.f1, true);
                 return pd::io::StabilityPoint{f, r.dt, r.dt_crit, r.growth, r.unstable_step < 0, r.unstable_step};
             };
             const std::vector<double> factors = {0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3};
-            stab.push_back({mod, pd::io::stability_sweep(factors, run, search_max, search_tol)});
+            stab.push_back({mod, pd::io::stability_sweep(factors, at_factor, search_max, search_tol)});
             pd::io::print_stability(std::cout, mod, stab.back().second.points);
         }
-        pd::io::write_stability_csv(out + "/stability.csv", stab);
+        pd::io::write_stability_csv(run.file("stability.csv"), stab);
         const double vn = pd::ref::lattice_von_neumann_ratio([&](int q) { return bar.w(q, m) / q; }, m);  // PMB springs
         const double thr_pmb = stab[0].second.threshold, thr_lps = stab[1].second.threshold;
         const std::size_t n_lps = N_list.size();  // rows: delta lps, delta pmb, m lps, m pmb
         const double rate_lps = table.rate(n_lps - 1), rate_pmb = table.rate(2 * n_lps - 1);  // finest pairs
         const double f1_pmb = finest["pmb"].second.f1;
-        summary.insert(summary.end(), {{"f1_pmb", f1_pmb, bar.f1, pd::io::relative_error(f1_pmb, bar.f1), "Hz"},
-                                       {"rate_E1_lps", rate_lps, 1, std::abs(rate_lps - 1), "-"},
-                                       {"rate_E1_pmb", rate_pmb, 1, std::abs(rate_pmb - 1), "-"},
-                                       {"dt_limit_pmb_over_SA", thr_pmb, vn, pd::io::relative_error(thr_pmb, vn), "-"},
-                                       {"dt_limit_lps_over_SA", thr_lps, NAN, NAN, "-"}});
+        run.summary({{"f1_pmb", f1_pmb, bar.f1, pd::io::relative_error(f1_pmb, bar.f1), "Hz"},
+                     {"rate_E1_lps", rate_lps, 1, std::abs(rate_lps - 1), "-"},
+                     {"rate_E1_pmb", rate_pmb, 1, std::abs(rate_pmb - 1), "-"},
+                     {"dt_limit_pmb_over_SA", thr_pmb, vn, pd::io::relative_error(thr_pmb, vn), "-"},
+                     {"dt_limit_lps_over_SA", thr_lps, NAN, NAN, "-"}});
         std::printf("stability limit / dt_SA at N = %d: PMB %.4f (von Neumann %.4f), LPS %.4f\n", N, thr_pmb, vn, thr_lps);
         // E1 ~ C dx once the phase drift over the window is small (spec 5.1: error x N ~ const).
-        check(rate_lps >= 0.7 && rate_lps <= 1.5, "LPS observed rate of E1 in [0.7, 1.5] (finest pair)");
-        check(stab[0].second.points[0].stable && stab[1].second.points[0].stable, "stable at dt-factor 0.5 (PMB, LPS)");
+        run.check(rate_lps >= 0.7 && rate_lps <= 1.5, "LPS observed rate of E1 in [0.7, 1.5] (finest pair)");
+        run.check(stab[0].second.points[0].stable && stab[1].second.points[0].stable, "stable at dt-factor 0.5 (PMB, LPS)");
         // Von Neumann is exact for the interior of the PMB lattice; the bisection resolves 0.5 %.
-        check(std::abs(thr_pmb / vn - 1) <= 0.02, "PMB stability limit within 2 % of von Neumann");
+        run.check(std::abs(thr_pmb / vn - 1) <= 0.02, "PMB stability limit within 2 % of von Neumann");
         std::snprintf(verdict + std::strlen(verdict), 120, "; E1 rate %.2f/%.2f, dt limit %.3f/%.3f dt_SA (LPS/PMB)",
                       rate_lps, rate_pmb, thr_lps, thr_pmb);
     }
@@ -198,14 +192,12 @@ static int run(int argc, char** argv)
                 return run_pd(b, "lps", N, m, f, t_end, false);
             }, [&](const Run& r) { return scorer.score(r.t_s, r.tip_m, r.x_tip, N, false); });
         bar_modes::print_integrators(rows, N);
-        bar_modes::write_integrators(out + "/integrators.csv", rows);
+        bar_modes::write_integrators(run.file("integrators.csv"), rows);
         // At Verlet's step, Newmark's period error ~ (omega dt)^2/12 is negligible for mode 1: same f1 bound.
-        check(std::abs(rows[1].f1_rel_error) <= 2.0 / N, "Newmark f1 within 2 dx/l of c/(4l) at Verlet's step");
-        summary.push_back({"f1_newmark_4dt_SA", (1 + rows[2].f1_rel_error) * bar.f1, bar.f1, std::abs(rows[2].f1_rel_error), "Hz"});
+        run.check(std::abs(rows[1].f1_rel_error) <= 2.0 / N, "Newmark f1 within 2 dx/l of c/(4l) at Verlet's step");
+        run.summary({"f1_newmark_4dt_SA", (1 + rows[2].f1_rel_error) * bar.f1, bar.f1, std::abs(rows[2].f1_rel_error), "Hz"});
     }
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: %s\n", check.passed() ? "PASS" : "FAIL (see the checks above)", verdict);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    return run.finish("%s", verdict);
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("bar_modes_1d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("bar_modes_1d", [&] { return run_case(argc, argv); }); }

@@ -17,28 +17,27 @@
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
 #include "pd/heat/heat_cvode.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/lattice.hpp"
 #include "reference/heat_1d.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 
 namespace {
 
 constexpr double T_start = 0, T_held = 100;  // [C] (spec T7/T11)
 constexpr int fd_refine = 4;                 // classical grid 4x finer than the PD cells
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: spec/000b T11).
-    pd::io::Options opt("correspondence_heat_1d", "Hourglass suppression in 1D correspondence heat conduction (spec/000b T11).");
+    pd::io::Case run("correspondence_heat_1d", "Hourglass suppression in 1D correspondence heat conduction (spec/000b T11).",
+                     "reports/1d/correspondence_heat");
+    pd::io::Options& opt = run.opt;
     opt.add("k", 50, "thermal conductivity", "W/(m K)");
     opt.add("rho", 7800, "density", "kg/m^3");
     opt.add("c", 502.08, "specific heat", "J/(kg K)");
@@ -50,16 +49,12 @@ int run(int argc, char** argv)
     opt.add_int("m", 3, "horizon ratio delta/dx");
     opt.add_string("chg", "0,0.01,0.1,1,100,10000", "hourglass coefficients C_hg (comma list)");
     opt.add_string("bc", "outside", "held cells outside the bar, or its first/last m cells", {"outside", "inside"});
-    pd::io::add_standard(opt, "reports/1d/correspondence_heat");
     for (const char* o : {"k", "rho", "c", "length", "area", "dt", "t-end"}) opt.require_positive(o);
     opt.require_at_least("N", 8);
     opt.require_at_least("m", 1);
-    opt.parse(argc, argv);
-    opt.echo(std::cout);
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
+    run.start(argc, argv);
     const std::vector<double> chg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
-    const int N = opt.get_flag("quick") ? std::min(opt.get_int("N"), 100) : opt.get_int("N"), m = opt.get_int("m");
+    const int N = run.quick() ? std::min(opt.get_int("N"), 100) : opt.get_int("N"), m = opt.get_int("m");
     const double l = opt.get("length"), A = opt.get("area"), dx = l / N, dt = opt.get("dt");
     const int steps = int(std::lround(opt.get("t-end") / dt));
 
@@ -83,7 +78,7 @@ int run(int argc, char** argv)
     };
 
     // 4. One run per C_hg.
-    pd::io::CsvWriter osc_csv(out + "/oscillation.csv", {"C_hg", "oscillation_K", "rms_distance_K", "max_distance_K", "wall_s"});
+    pd::io::CsvWriter osc_csv(run.file("oscillation.csv"), {"C_hg", "oscillation_K", "rms_distance_K", "max_distance_K", "wall_s"});
     std::vector<std::vector<double>> profiles;
     std::vector<double> osc, rms;
     for (double C : chg) {
@@ -107,7 +102,7 @@ int run(int argc, char** argv)
     }
     std::vector<std::string> cols = {"x_m", "T_classical_C"};
     for (double C : chg) cols.push_back("T_chg_" + pd::io::CsvCell(C).text() + "_C");
-    pd::io::CsvWriter prof(out + "/profiles.csv", cols, false);
+    pd::io::CsvWriter prof(run.file("profiles.csv"), cols, false);
     for (int i = first; i < last; ++i) {
         std::vector<double> row = {body.x.c[0][i], classical(body.x.c[0][i])};
         for (const auto& p : profiles) row.push_back(p[i]);
@@ -138,7 +133,7 @@ int run(int argc, char** argv)
         long n_ref = 0;
         const std::vector<double> ref = final_profile("cvode", 1e-10, n_ref);
         const double dt_crit = pd::thermal_critical_step(model, bonds, heat, std::vector<double>(body.size(), T_start));
-        pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps"});
+        pd::io::CsvWriter wp(run.file("work_precision.csv"), {"integrator", "dt_s", "rtol", "error", "wall_s", "steps"});
         std::printf("work-precision at C_hg = 1 (error: max |T - T_cvode(rtol 1e-10)| at t = %g s; dt_crit %.4g s):\n", t_end, dt_crit);
         auto record = [&](const std::string& scheme, double step) {
             pd::io::Timer timer;
@@ -156,23 +151,20 @@ int run(int argc, char** argv)
     }
 
     // 6. Checks: the source's qualitative statements, as numbers (only for the default C_hg list).
-    pd::io::Checks check;
-    std::vector<pd::io::SummaryRow> summary;
     for (std::size_t q = 0; q < chg.size(); ++q)
-        summary.push_back({"oscillation_chg_" + pd::io::CsvCell(chg[q]).text(), osc[q], NAN, NAN, "K"});
+        run.summary({"oscillation_chg_" + pd::io::CsvCell(chg[q]).text(), osc[q], NAN, NAN, "K"});
     if (!opt.given("chg")) {
-        check(osc[0] > 10 * osc[3], "C_hg = 0 oscillates: odd-even amplitude > 10x that at C_hg = 1");
+        run.check(osc[0] > 10 * osc[3], "C_hg = 0 oscillates: odd-even amplitude > 10x that at C_hg = 1");
         bool falling = true;
         for (std::size_t q = 1; q < 5; ++q) falling = falling && osc[q] < osc[q - 1];
-        check(falling, "oscillation falls with C_hg from 0 to 100");
-        check(osc[4] < 0.05 * osc[0], "C_hg = 100: oscillation below 5 % of C_hg = 0");
-        check(rms[5] > rms[4], "C_hg = 10000 departs further from classical than C_hg = 100");
+        run.check(falling, "oscillation falls with C_hg from 0 to 100");
+        run.check(osc[4] < 0.05 * osc[0], "C_hg = 100: oscillation below 5 % of C_hg = 0");
+        run.check(rms[5] > rms[4], "C_hg = 10000 departs further from classical than C_hg = 100");
     }
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s\n", check.passed() ? "PASS" : "FAIL (see the checks above)");
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    return run.finish("odd-even oscillation %.3e K at C_hg = %g, %.3e K at C_hg = %g", osc.front(), chg.front(), osc.back(),
+                      chg.back());
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("correspondence_heat_1d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("correspondence_heat_1d", [&] { return run_case(argc, argv); }); }

@@ -14,17 +14,13 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/properties.hpp"
 #include "pd/heat/time_to_reach.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/lattice.hpp"
-#include "pd/parallel.hpp"
 #include "reference/enthalpy.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <map>
 
 namespace {
@@ -32,13 +28,13 @@ namespace {
 constexpr int nodes = 8;                  // spec V2: 8 nodes, any layout
 constexpr double theta_min = 20, theta_max = 1200;  // validity of the specific-heat law [C]
 
-struct Case {
+struct Heating {
     double rho, s, T0, k, dx, area;       // [kg/m^3], [W/m^3], [C], [W/(m K)], [m], [m^2]
 };
 
 // Time for the mean node temperature to reach `target` [C] with one integrator (step: dt for the
 // Euler schemes, rtol for CVODE).
-pd::ReachResult heat_to(const Case& cs, pd::HeatIntegrator scheme, double step, double target)
+pd::ReachResult heat_to(const Heating& cs, pd::HeatIntegrator scheme, double step, double target)
 {
     auto body = pd::box<1>(pd::Vec<1>{0}, pd::Vec<1>{nodes * cs.dx}, cs.dx, cs.area);
     const auto bonds = pd::build_bonds(body, 3 * cs.dx);
@@ -64,10 +60,11 @@ pd::ReachResult heat_to(const Case& cs, pd::HeatIntegrator scheme, double step, 
     return r;
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: spec/000a V2), echoed and saved.
-    pd::io::Options opt("heating_cp_table_1d", "Adiabatic heating with the carbon-steel c(theta) (spec/000a V2).");
+    pd::io::Case run("heating_cp_table_1d", "Adiabatic heating with the carbon-steel c(theta) (spec/000a V2).", "reports/1d/heating_cp_table");
+    pd::io::Options& opt = run.opt;
     opt.add("rho", 1, "density", "kg/m^3");
     opt.add("source", 1, "uniform volumetric heat source", "W/m^3");
     opt.add("T0", 20, "initial temperature (20..1200)", "C");
@@ -78,21 +75,16 @@ int run(int argc, char** argv)
     opt.add("dx", 1, "node spacing", "m");
     opt.add("area", 1, "cross-section of the row of nodes", "m^2");
     opt.add_string("integrator", "cvode", "integrator of the headline t_1200", {"cvode", "explicit", "implicit"});
-    pd::io::add_standard(opt, "reports/1d/heating_cp_table");
     for (const char* p : {"rho", "source", "dt", "rtol", "k", "dx", "area"}) opt.require_positive(p);
     opt.require_range("T0", theta_min, theta_max, true, false);
     opt.require_range("T-end", theta_min, theta_max, false, true);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (!(opt.get("T-end") > opt.get("T0"))) opt.fail("--T-end must be above --T0");
-    opt.echo(std::cout);
-    pd::set_threads(opt.get_int("threads"));
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
-    const Case cs{opt.get("rho"), opt.get("source"), opt.get("T0"), opt.get("k"), opt.get("dx"), opt.get("area")};
+    run.start();
+    const Heating cs{opt.get("rho"), opt.get("source"), opt.get("T0"), opt.get("k"), opt.get("dx"), opt.get("area")};
     const double T_end = opt.get("T-end"), dt = opt.get("dt"), rtol = opt.get("rtol");
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     const auto t_exact = [&](double theta) { return pd::ref::adiabatic_heating_time(cs.rho, cs.s, cs.T0, theta); };
-    pd::io::Checks check;
 
     // 2. History: time to reach each checkpoint temperature of spec V2 (and T-end), three integrators.
     std::vector<double> checkpoints;
@@ -101,8 +93,8 @@ int run(int argc, char** argv)
     checkpoints.push_back(T_end);
     const std::vector<pd::HeatIntegrator> schemes = {pd::HeatIntegrator::explicit_euler,
                                                      pd::HeatIntegrator::implicit_euler, pd::HeatIntegrator::cvode};
-    pd::io::CsvWriter hist(out + "/history.csv", {"theta_C", "c_J_per_kgK", "t_exact_s", "t_explicit_s", "t_implicit_s",
-                                                  "t_cvode_s", "err_explicit_s", "err_implicit_s", "err_cvode_s"});
+    pd::io::CsvWriter hist(run.file("history.csv"), {"theta_C", "c_J_per_kgK", "t_exact_s", "t_explicit_s", "t_implicit_s",
+                                                     "t_cvode_s", "err_explicit_s", "err_implicit_s", "err_cvode_s"});
     std::printf("time to reach theta (explicit and implicit Euler dt = %g s, CVODE rtol = %g):\n", dt, rtol);
     std::printf("  %7s %9s %14s %12s %12s %12s\n", "theta_C", "c", "exact_s", "err_expl_s", "err_impl_s", "err_cvode_s");
     std::map<pd::HeatIntegrator, pd::ReachResult> at_end;
@@ -120,12 +112,12 @@ int run(int argc, char** argv)
         worst_cvode = std::max(worst_cvode, std::abs(t[2] - ex) / ex);
     }
     // CVODE controls the local error; the global error grows over its ~600 steps to about 100 rtol.
-    check(worst_cvode < 1000 * rtol, "CVODE: every checkpoint time within 1000 rtol of the exact enthalpy time");
-    check(std::abs(at_end[schemes[0]].t - at_end[schemes[1]].t) < 1e-9 * t_exact(T_end),
-          "implicit Euler (rho c lagged) = explicit Euler when Q = 0 (to 1e-9)");
+    run.check(worst_cvode < 1000 * rtol, "CVODE: every checkpoint time within 1000 rtol of the exact enthalpy time");
+    run.check(std::abs(at_end[schemes[0]].t - at_end[schemes[1]].t) < 1e-9 * t_exact(T_end),
+              "implicit Euler (rho c lagged) = explicit Euler when Q = 0 (to 1e-9)");
 
     // 3. Work-precision: error of the time to T-end against the exact one, and run time.
-    pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t_end_s"});
+    pd::io::CsvWriter wp(run.file("work_precision.csv"), {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t_end_s"});
     std::printf("work-precision (time to %g C, exact %.2f s):\n", T_end, t_exact(T_end));
     // dt_s: the fixed step; for CVODE the mean internal step t/steps. rtol: CVODE's tolerance.
     auto record = [&](pd::HeatIntegrator s, double step) {
@@ -144,26 +136,22 @@ int run(int argc, char** argv)
     double e_cv = 0;
     for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) e_cv = record(pd::HeatIntegrator::cvode, tol);
     const double ratio = e_exp[1] / e_exp[2];
-    check(ratio > 5 && ratio < 20, "explicit Euler first order: error(dt 1000)/error(dt 100) in 5..20 (10 expected)");
-    check(e_cv < 1e-7, "CVODE at rtol 1e-10 within 1e-7 (1000 rtol) of the exact time");
+    run.check(ratio > 5 && ratio < 20, "explicit Euler first order: error(dt 1000)/error(dt 100) in 5..20 (10 expected)");
+    run.check(e_cv < 1e-7, "CVODE at rtol 1e-10 within 1e-7 (1000 rtol) of the exact time");
 
     // 4. Summary and verdict.
     const auto main_scheme = pd::parse_heat_integrator(opt.get_string("integrator"));
     const std::string q = "t_" + std::to_string(int(std::lround(T_end)));
-    std::vector<pd::io::SummaryRow> summary;
     // Reference: the published 827063.84 J/kg (seed 000a eq. 3.37) for 20 -> 1200 C, else the exact q.
     const bool published_case = cs.T0 == theta_min && T_end == theta_max;
     const double ref_end = published_case ? cs.rho * 827063.84 / cs.s : t_exact(T_end);
-    summary.push_back({q, at_end[main_scheme].t, ref_end, pd::io::relative_error(at_end[main_scheme].t, ref_end), "s"});
+    run.summary({q, at_end[main_scheme].t, ref_end, pd::io::relative_error(at_end[main_scheme].t, ref_end), "s"});
     for (auto s : schemes)
-        summary.push_back({q + "_" + pd::name(s), at_end[s].t, ref_end, pd::io::relative_error(at_end[s].t, ref_end), "s"});
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: time to %g C (%s) %.2f s, reference %.2f s, error %.2e\n",
-                check.passed() ? "PASS" : "FAIL (see the checks above)", T_end, pd::name(main_scheme), at_end[main_scheme].t,
-                ref_end, pd::io::relative_error(at_end[main_scheme].t, ref_end));
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+        run.summary({q + "_" + pd::name(s), at_end[s].t, ref_end, pd::io::relative_error(at_end[s].t, ref_end), "s"});
+    return run.finish("time to %g C (%s) %.2f s, reference %.2f s, error %.2e", T_end, pd::name(main_scheme), at_end[main_scheme].t,
+                      ref_end, pd::io::relative_error(at_end[main_scheme].t, ref_end));
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("heating_cp_table_1d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("heating_cp_table_1d", [&] { return run_case(argc, argv); }); }

@@ -15,10 +15,8 @@
 // Run: sls_frequency_1d [--E-inf 1] [--E-b 1] [--tau 1] [--omega-min 0.01] [--omega-max 100]
 //   [--points 41] [--steps-per-period 200] [--periods 4] [--quick] [--check] [--out DIR]
 // Writes: frequency.csv, summary.csv, params.csv.
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/laws/maxwell.hpp"
 
@@ -26,7 +24,6 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <iostream>
 #include <numbers>
 
 namespace {
@@ -58,10 +55,11 @@ Response measure(const pd::laws::Maxwell& law, double omega, int N, int periods,
     return {std::hypot(a, b) / eps_a, std::atan2(b, a)};
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: the thesis' example), echoed and saved.
-    pd::io::Options opt("sls_frequency_1d", "SLS frequency response through the exponential integrator (spec/000c V3).");
+    pd::io::Case run("sls_frequency_1d", "SLS frequency response through the exponential integrator (spec/000c V3).", "reports/1d/sls_frequency");
+    pd::io::Options& opt = run.opt;
     opt.add("E-inf", 1, "equilibrium modulus E_inf", "Pa");
     opt.add("E-b", 1, "Maxwell branch modulus E_b", "Pa");
     opt.add("tau", 1, "relaxation time tau_b", "s");
@@ -70,23 +68,19 @@ int run(int argc, char** argv)
     opt.add_int("points", 41, "frequencies of the grid (log spaced)");
     opt.add_int("steps-per-period", 200, "time steps per period");
     opt.add_int("periods", 4, "periods measured after the transient");
-    pd::io::add_standard(opt, "reports/1d/sls_frequency");
     for (const char* p : {"E-inf", "tau", "omega-min", "omega-max"}) opt.require_positive(p);
     opt.require_positive("E-b");
     opt.require_at_least("points", 3);
     opt.require_at_least("steps-per-period", 8);
     opt.require_at_least("periods", 1);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (!(opt.get("omega-max") > opt.get("omega-min"))) opt.fail("--omega-max must be above --omega-min");
-    opt.echo(std::cout);
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
-    const bool quick = opt.get_flag("quick");
+    run.start();
+    const bool quick = run.quick();
     const double E_inf = opt.get("E-inf"), E_b = opt.get("E-b"), tau = opt.get("tau");
     const double w_min = opt.get("omega-min"), w_max = opt.get("omega-max");
     const int points = quick ? std::min(opt.get_int("points"), 17) : opt.get_int("points");
     const int N = opt.get_int("steps-per-period"), periods = opt.get_int("periods");
-    pd::io::Checks check;
     const pd::io::Timer timer;
 
     // 2. Model and reference transfer function (7.32-7.33).
@@ -101,8 +95,8 @@ int run(int argc, char** argv)
     };
 
     // 3. Frequency sweep.
-    pd::io::CsvWriter csv(out + "/frequency.csv", {"omega_rad_s", "f_Hz", "H_amplitude_Pa", "H_amplitude_ref_Pa", "phase_deg",
-                                                   "phase_ref_deg", "amplitude_rel_error", "phase_error_deg"});
+    pd::io::CsvWriter csv(run.file("frequency.csv"), {"omega_rad_s", "f_Hz", "H_amplitude_Pa", "H_amplitude_ref_Pa", "phase_deg",
+                                                      "phase_ref_deg", "amplitude_rel_error", "phase_error_deg"});
     std::printf("  %12s %12s %12s %10s %10s %11s %11s\n", "omega_rad_s", "|H|_Pa", "|H|_ref_Pa", "phase_deg", "ref_deg", "amp_err", "phase_err");
     double worst_amp = 0, worst_phase = 0, worst_discrete = 0, worst_complex = 0;  // [-], [-], [-], [Pa]
     for (int p = 0; p < points; ++p) {
@@ -133,7 +127,7 @@ int run(int argc, char** argv)
     const double wall = timer.seconds();
 
     // 5. Summary, checks and verdict.
-    const std::vector<pd::io::SummaryRow> summary = {
+    run.summary({
         {"phase_max_deg", phase_max, phase_max_ref, pd::io::relative_error(phase_max, phase_max_ref), "deg"},
         {"omega_phase_max", w_max_phase, w_max_ref, pd::io::relative_error(w_max_phase, w_max_ref), "rad/s"},
         {"H_low_over_E_inf", measure(law, w_min, N, periods, tau).amplitude / E_inf, std::abs(H(w_min)) / E_inf,
@@ -144,27 +138,25 @@ int run(int argc, char** argv)
         {"max_phase_rel_error", worst_phase, 0, NAN, "-"},
         {"max_error_vs_discrete_H", worst_discrete, 0, NAN, "-"},
         {"max_complex_error_over_E_b_disc", worst_complex / (E_b * discretisation), NAN, NAN, "-"},
-        {"wall_s", wall, NAN, NAN, "s"}};
-    pd::io::write_summary(out + "/summary.csv", summary);
+        {"wall_s", wall, NAN, NAN, "s"}});
     std::printf("phase max %.5f deg at %.6f rad/s (reference %.5f deg at %.6f rad/s); worst |H| error %.2e, phase %.2e "
                 "(relative); against the discrete H_d %.2e; %.2f s\n",
                 phase_max, w_max_phase, phase_max_ref, w_max_ref, worst_amp, worst_phase, worst_discrete, wall);
     // Round-off and the e^{-20} transient: the measured response is the discrete H_d.
-    check(worst_discrete < 1e-7, "measured response = exact discrete response H_d to 1e-7 at every frequency");
+    run.check(worst_discrete < 1e-7, "measured response = exact discrete response H_d to 1e-7 at every frequency");
     // O((w dt)^2) of the piecewise-linear input (header): measured 1.2 E_b (2 pi/N)^2/12 at N = 200.
-    check(worst_complex < 2 * E_b * discretisation, "|H - H(7.32)| within 2 E_b (2 pi/N)^2/12 at every frequency");
+    run.check(worst_complex < 2 * E_b * discretisation, "|H - H(7.32)| within 2 E_b (2 pi/N)^2/12 at every frequency");
     // The same bound on the imaginary part, over |H| at the peak = E_inf sqrt(1 + gamma_b), in radians.
-    check(std::abs(phase_max - phase_max_ref) * pi / 180 < 2 * E_b * discretisation / (E_inf * std::sqrt(1 + gamma_b)),
-          "maximum phase within 2 E_b (2 pi/N)^2/12 / |H| rad of asin(gamma_b/(2 + gamma_b))");
+    run.check(std::abs(phase_max - phase_max_ref) * pi / 180 < 2 * E_b * discretisation / (E_inf * std::sqrt(1 + gamma_b)),
+              "maximum phase within 2 E_b (2 pi/N)^2/12 / |H| rad of asin(gamma_b/(2 + gamma_b))");
     // The discrete peak moves by O((w dt)^2) too, growing with gamma_b: measured 0.5 (2 pi/N)^2/12 at
     // gamma_b = 1 (N = 30, 50, 200), 1.5 at gamma_b = 3, 4 at gamma_b = 10; bound max(1, gamma_b) (2 pi/N)^2/12.
-    check(std::abs(w_max_phase / w_max_ref - 1) < std::max(1.0, gamma_b) * discretisation,
-          "frequency of the maximum phase within max(1, gamma_b) (2 pi/N)^2/12 of sqrt(w0 wP)");
-    std::printf("verdict: %s: maximum phase lead %.4f deg (reference %.4f) at %.4f rad/s (reference %.4f)\n",
-                check.passed() ? "PASS" : "FAIL (see the checks above)", phase_max, phase_max_ref, w_max_phase, w_max_ref);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.check(std::abs(w_max_phase / w_max_ref - 1) < std::max(1.0, gamma_b) * discretisation,
+              "frequency of the maximum phase within max(1, gamma_b) (2 pi/N)^2/12 of sqrt(w0 wP)");
+    return run.finish("maximum phase lead %.4f deg (reference %.4f) at %.4f rad/s (reference %.4f)", phase_max, phase_max_ref,
+                      w_max_phase, w_max_ref);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("sls_frequency_1d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("sls_frequency_1d", [&] { return run_case(argc, argv); }); }

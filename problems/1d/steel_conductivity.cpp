@@ -17,11 +17,9 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conductivity.hpp"
 #include "pd/heat/time_to_reach.hpp"
-#include "pd/io/checks.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
-#include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/lattice.hpp"
 #include "reference/heat_kirchhoff.hpp"
@@ -34,7 +32,7 @@ namespace {
 
 using Model = pd::ConductivityOfTheta<pd::Agwai>;
 
-struct Case {
+struct Setup {
     double l, A, rho_c, T_a, T_b, T0, T_end, T_target;  // [m], [m^2], [J/(m^3 K)], temperatures [C]
     int m;
 };
@@ -54,7 +52,7 @@ struct Bar {
     pd::Body<1> body;
     pd::Bonds bonds;
     Model model;
-    Bar(const Case& cs, int N)
+    Bar(const Setup& cs, int N)
         : dx(cs.l / N), body(pd::box<1>(pd::Vec<1>{-cs.m * dx}, pd::Vec<1>{cs.l + cs.m * dx}, dx, cs.A)),
           bonds(pd::build_bonds(body, cs.m * dx, half_volume_at_delta())), model({0, cs.A}, pd::en1993_carbon_steel_conductivity(), body, bonds)
     {
@@ -69,7 +67,7 @@ struct Steady {
 };
 
 // (a) PD steady state with the exact profile on the held layers.
-Steady steady(const Case& cs, int N, const pd::ref::KirchhoffBar& ref)
+Steady steady(const Setup& cs, int N, const pd::ref::KirchhoffBar& ref)
 {
     pd::io::Timer timer;
     Bar bar(cs, N);
@@ -90,7 +88,7 @@ Steady steady(const Case& cs, int N, const pd::ref::KirchhoffBar& ref)
 }
 
 // (b), (c) Time for the centre to reach T_target (step: dt for Euler, rtol for CVODE; dt_crit out).
-pd::ReachResult t_cross(const Case& cs, int N, pd::HeatIntegrator scheme, double step, double* dt_crit = nullptr,
+pd::ReachResult t_cross(const Setup& cs, int N, pd::HeatIntegrator scheme, double step, double* dt_crit = nullptr,
                         long* picard = nullptr)
 {
     Bar bar(cs, N);
@@ -110,10 +108,12 @@ pd::ReachResult t_cross(const Case& cs, int N, pd::HeatIntegrator scheme, double
     return r;
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (SI; temperatures in C, the unit of the EN 1993-1-2 law).
-    pd::io::Options opt("steel_conductivity_1d", "1D steel bar with EN 1993-1-2 k(theta): Agwai PD vs Kirchhoff and MOL references.");
+    pd::io::Case run("steel_conductivity_1d", "1D steel bar with EN 1993-1-2 k(theta): Agwai PD vs Kirchhoff and MOL references.",
+                     "reports/1d/steel_conductivity");
+    pd::io::Options& opt = run.opt;
     opt.add("length", 0.1, "bar length", "m");
     opt.add("area", 1e-4, "cross-section", "m^2");
     opt.add("rho", 7850, "density", "kg/m^3");
@@ -125,22 +125,17 @@ int run(int argc, char** argv)
     opt.add("T-target", 500, "transient: centre temperature whose arrival time is measured", "C");
     opt.add_int("m", 3, "horizon ratio delta/dx");
     opt.add_int("N", 0, "cells of the work-precision run; 0 = 100 (50 with --quick)");
-    pd::io::add_standard(opt, "reports/1d/steel_conductivity");
     for (const char* p : {"length", "area", "rho", "c"}) opt.require_positive(p);
     for (const char* p : {"T-a", "T-b", "T0", "T-end", "T-target"}) opt.require_range(p, 20, 1200, true);
     opt.require_at_least("m", 1);
     opt.require_at_least("N", 0);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (!(std::min(opt.get("T0"), opt.get("T-end")) < opt.get("T-target") && opt.get("T-target") < std::max(opt.get("T0"), opt.get("T-end"))))
         throw std::invalid_argument("option --T-target must lie strictly between --T0 and --T-end");
-    opt.echo(std::cout);
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
-    const Case cs{opt.get("length"), opt.get("area"), opt.get("rho") * opt.get("c"), opt.get("T-a"), opt.get("T-b"),
+    run.start();
+    const Setup cs{opt.get("length"), opt.get("area"), opt.get("rho") * opt.get("c"), opt.get("T-a"), opt.get("T-b"),
                   opt.get("T0"), opt.get("T-end"), opt.get("T-target"), opt.get_int("m")};
-    const bool quick = opt.get_flag("quick");
-    pd::io::Checks check;
-    std::vector<pd::io::SummaryRow> summary;
+    const bool quick = run.quick();
 
     // 2. Steady bar vs the Kirchhoff transform.
     const pd::ref::KirchhoffBar ref([](double T) { return pd::ref::en1993_steel_k(T); }, cs.l, cs.T_a, cs.T_b);
@@ -156,16 +151,16 @@ int run(int argc, char** argv)
     }
     std::printf("\nsteady bar %g -> %g C: max |T - T_Kirchhoff| [K] and flux (Kirchhoff %.6g W/m^2)\n", cs.T_a, cs.T_b, ref.flux());
     st.print(std::cout);
-    st.write_csv(out + "/steady_convergence.csv");
+    st.write_csv(run.file("steady_convergence.csv"));
     // Mean order over the study: the law is linear below 800 C, where the bond rule (k_i + k_j)/2 is
     // exact (round-off error); the error comes from the kink and the 0.06 W/(m K) jump of k at 800 C,
     // which makes T' jump: O(delta) locally at a jump, O(delta^2) at a kink, so an order between 1 and 2.
     const double st_rate = std::log(first_error / last.error) / std::log(double(Ns.back()) / Ns.front());
-    check(st_rate > 1.0, "steady profile converges to Kirchhoff at mean order > 1 (jump of k at 800 C)");
-    check(pd::io::relative_error(last.flux, ref.flux()) < 1e-3, "steady heat flux within 1e-3 of Kirchhoff at the finest N");
-    summary.push_back({"steady_flux", last.flux, ref.flux(), pd::io::relative_error(last.flux, ref.flux()), "W/m^2"});
-    summary.push_back({"steady_max_error", last.error, NAN, NAN, "K"});
-    summary.push_back({"steady_mean_rate", st_rate, NAN, NAN, "-"});
+    run.check(st_rate > 1.0, "steady profile converges to Kirchhoff at mean order > 1 (jump of k at 800 C)");
+    run.check(pd::io::relative_error(last.flux, ref.flux()) < 1e-3, "steady heat flux within 1e-3 of Kirchhoff at the finest N");
+    run.summary({"steady_flux", last.flux, ref.flux(), pd::io::relative_error(last.flux, ref.flux()), "W/m^2"});
+    run.summary({"steady_max_error", last.error, NAN, NAN, "K"});
+    run.summary({"steady_mean_rate", st_rate, NAN, NAN, "-"});
 
     // 3. Transient t500 vs the method-of-lines reference (its error: 400 vs 800 cells).
     const pd::ref::KBar1D kb{cs.l, cs.rho_c, cs.T0, cs.T_end, pd::ref::en1993_steel_k, pd::ref::en1993_steel_phi};
@@ -186,19 +181,19 @@ int run(int argc, char** argv)
                 .error = std::abs(r.t - t_ref) / t_ref, .wall_s = r.wall_s, .extras = {r.t, t_ref}});
     }
     tr.print(std::cout);
-    tr.write_csv(out + "/transient_convergence.csv");
+    tr.write_csv(run.file("transient_convergence.csv"));
     const double tr_rate = tr.rate(Ns.size() - 1);
-    check(tr_rate > 0.8 && tr_rate < 1.3, "transient t500 converges to classical at first order (0.8..1.3: held layers outside)");
-    summary.push_back({"t_target_pd_N" + std::to_string(Ns.back()), t_pd, t_ref, pd::io::relative_error(t_pd, t_ref), "s"});
-    summary.push_back({"t_target_classical", t_ref, t_ref_half, pd::io::relative_error(t_ref, t_ref_half), "s"});
-    summary.push_back({"t_target_classical_constant_k_T0", t_ref_k0, t_ref, pd::io::relative_error(t_ref_k0, t_ref), "s"});
+    run.check(tr_rate > 0.8 && tr_rate < 1.3, "transient t500 converges to classical at first order (0.8..1.3: held layers outside)");
+    run.summary({"t_target_pd_N" + std::to_string(Ns.back()), t_pd, t_ref, pd::io::relative_error(t_pd, t_ref), "s"});
+    run.summary({"t_target_classical", t_ref, t_ref_half, pd::io::relative_error(t_ref, t_ref_half), "s"});
+    run.summary({"t_target_classical_constant_k_T0", t_ref_k0, t_ref, pd::io::relative_error(t_ref_k0, t_ref), "s"});
 
     // 4. Work-precision of the three integrators at one N.
     const int Nw = opt.get_int("N") > 0 ? opt.get_int("N") : quick ? 50 : 100;
     double dt_crit = 0;
     const double t_conv = t_cross(cs, Nw, pd::HeatIntegrator::cvode, 1e-11, &dt_crit).t;
     std::printf("\nwork-precision, N = %d (critical step at k_max %.4g s, time-converged t %.9f s):\n", Nw, dt_crit, t_conv);
-    pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t_s", "picard_per_step"});
+    pd::io::CsvWriter wp(run.file("work_precision.csv"), {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t_s", "picard_per_step"});
     auto record = [&](pd::HeatIntegrator s, double step) {
         long picard = 0;
         const auto r = t_cross(cs, Nw, s, step, nullptr, &picard);
@@ -215,20 +210,17 @@ int run(int argc, char** argv)
     for (double dt : {4.0, 2.0, 1.0}) e_imp.push_back(record(pd::HeatIntegrator::implicit_euler, dt));
     const std::vector<double> rtols = {1e-4, 1e-6, 1e-8, 1e-9, 1e-10};
     for (double tol : rtols) e_cv.push_back(record(pd::HeatIntegrator::cvode, tol));
-    check(std::abs(e_imp[1] / e_imp[2] - 2) < 0.3, "implicit Euler (Picard) first order in dt (error ratio 2 +- 0.3)");
-    check(std::abs(e_exp[0] / e_exp[1] - 2) < 0.3, "explicit Euler at 0.9 dt_crit(k_max) stable and first order (ratio 2 +- 0.3)");
+    run.check(std::abs(e_imp[1] / e_imp[2] - 2) < 0.3, "implicit Euler (Picard) first order in dt (error ratio 2 +- 0.3)");
+    run.check(std::abs(e_exp[0] / e_exp[1] - 2) < 0.3, "explicit Euler at 0.9 dt_crit(k_max) stable and first order (ratio 2 +- 0.3)");
     // CVODE controls the local error; the global error of the crossing time lies within 1..100 rtol.
     bool cv_ok = true;
     for (std::size_t i = 0; i < rtols.size(); ++i) cv_ok = cv_ok && e_cv[i] < 100 * rtols[i];
-    check(cv_ok, "CVODE (frozen-k Jacobian): error of t below 100 rtol at every rtol");
-    summary.push_back({"t_target_implicit_dt1", t_conv * (1 + e_imp[2]), t_conv, e_imp[2], "s"});
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: steady rate %.2f, flux error %.2e; t500 PD %.4f s vs classical %.4f s (rate %.2f)\n",
-                check.passed() ? "PASS" : "FAIL (see the checks above)", st_rate, pd::io::relative_error(last.flux, ref.flux()),
-                t_pd, t_ref, tr_rate);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.check(cv_ok, "CVODE (frozen-k Jacobian): error of t below 100 rtol at every rtol");
+    run.summary({"t_target_implicit_dt1", t_conv * (1 + e_imp[2]), t_conv, e_imp[2], "s"});
+    return run.finish("steady rate %.2f, flux error %.2e; t500 PD %.4f s vs classical %.4f s (rate %.2f)", st_rate,
+                      pd::io::relative_error(last.flux, ref.flux()), t_pd, t_ref, tr_rate);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("steel_conductivity_1d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("steel_conductivity_1d", [&] { return run_case(argc, argv); }); }

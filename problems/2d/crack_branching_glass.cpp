@@ -16,13 +16,11 @@
 // Pre-crack bonds are kept as broken bonds, so phi (and the 0.41 contour) includes the pre-crack.
 #include "pd/damage/crack_run.hpp"
 #include "pd/damage/precrack.hpp"
-#include "pd/io/checks.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/options.hpp"
 
 #include <cstdio>
-#include <iostream>
 
 namespace {
 
@@ -49,10 +47,12 @@ struct Result {
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI; defaults = the published cases), echoed and saved.
-    pd::io::Options opt("crack_branching_glass_2d", "Dynamic crack branching in a pre-cracked glass plate (2D PMB).");
+    pd::io::Case run("crack_branching_glass_2d", "Dynamic crack branching in a pre-cracked glass plate (2D PMB).",
+                     "reports/2d/crack_branching_glass");
+    pd::io::Options& opt = run.opt;
     std::string& material = opt.add_string("material", "duran50", "glass and its published case", {"duran50", "sodalime"});
     const double nan = pd::crack::nan;
     double& E = opt.add("E", nan, "Young's modulus (nan: material's)", "Pa");
@@ -72,29 +72,27 @@ static int run(int argc, char** argv)
     double& window = opt.add("window", 2e-6, "crack-speed window (spec/002: 2 us)", "s");
     double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
-    pd::io::add_standard(opt, "reports/2d/crack_branching_glass");
     for (const char* o : {"length", "height", "crack", "dt", "dt-factor", "t-end", "window"}) opt.require_positive(o);
     for (const char* o : {"E", "rho", "Gc", "sigma"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
     opt.require_at_least("no-fail-rows", 0);
     opt.require_range("threshold", 0, 1, false, true);
     opt.require_range("walk-threshold", 0, 1, false, true);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     const bool duran = material == "duran50";
     if (std::isnan(E)) E = duran ? 65e9 : 72e9;
     if (std::isnan(rho)) rho = duran ? 2235 : 2440;
     if (std::isnan(Gc)) Gc = duran ? 204 : 135;
     if (std::isnan(sigma)) sigma = duran ? 12e6 : 22e6;
     if (!(a0 < L)) opt.fail("option --crack must be shorter than --length");
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     const std::vector<double> dxs = quick && !opt.given("dx-list") ? std::vector<double>{1e-3}
                                                                     : pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
-    const std::filesystem::path out = opt.get_string("out");
+    run.start();
+    const std::filesystem::path& out = run.out();
     // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
     // wait for a descheduled thread): one thread unless --threads is given.
-    pd::set_threads(quick && !opt.given("threads") ? 1 : opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    if (quick && !opt.given("threads")) pd::set_threads(1);
     const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::stress};
 
     std::vector<Result> results;
@@ -182,7 +180,7 @@ static int run(int argc, char** argv)
     const double theta = 0.5 * (r.theta_up - r.theta_low);  // mean half-angle of the two branches [deg]
     const double cR = pd::crack::rayleigh_speed(E, mat.nu(), rho);  // Viktorov (crack_run.hpp)
     using pd::io::relative_error;
-    const std::vector<pd::io::SummaryRow> rows{
+    run.summary({
         {"t_init_s", r.t_init, p.t_init, relative_error(r.t_init, p.t_init), "s"},
         {"t_branch_s", r.t_branch, p.t_branch, relative_error(r.t_branch, p.t_branch), "s"},
         {"x_branch_m", r.x_branch, p.x_branch, relative_error(r.x_branch, p.x_branch), "m"},
@@ -191,23 +189,19 @@ static int run(int argc, char** argv)
         {"v_mean_m_per_s", r.v_mean, p.v_mean, relative_error(r.v_mean, p.v_mean), "m/s"},
         {"v_max_m_per_s", r.v_max, cR, relative_error(r.v_max, cR), "m/s"},  // reference: Rayleigh speed (bound)
         {"nodes", static_cast<double>(r.nodes), nan, nan, "-"},
-        {"wall_time", r.wall, nan, nan, "s"}};
-    pd::io::write_summary(out / "summary.csv", rows);
-    pd::io::print_summary(rows, 20);
+        {"wall_time", r.wall, nan, nan, "s"}});
+    run.print_summary(20);
 
     // Tolerances (the published values are "about" / read from figures, the load conversion is
     // not stated in spec/002): a branch must form; x_branch within 10 mm and t_branch within 25 %;
     // the crack may not outrun the Rayleigh speed.
-    pd::io::Checks check;
-    check(!std::isnan(r.t_init), "the crack starts to run");
-    check(!std::isnan(r.t_branch), "a branch forms (crack_metrics rule)");
-    check(std::abs(r.x_branch - p.x_branch) <= 0.010, "branch position within 10 mm of the published one");
-    check(relative_error(r.t_branch, p.t_branch) <= 0.25, "branching time within 25 % of the published one");
-    check(r.v_max < cR, "maximum tip speed below the Rayleigh speed");
-    std::printf("%s: %s, dx %.3g mm: branch at x = %.1f mm, t = %.2f us (published %.0f mm, %.2f us)\n",
-                check.passed() ? "PASS" : "FAIL", material.c_str(), r.dx * 1e3, r.x_branch * 1e3, r.t_branch * 1e6,
-                p.x_branch * 1e3, p.t_branch * 1e6);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.check(!std::isnan(r.t_init), "the crack starts to run");
+    run.check(!std::isnan(r.t_branch), "a branch forms (crack_metrics rule)");
+    run.check(std::abs(r.x_branch - p.x_branch) <= 0.010, "branch position within 10 mm of the published one");
+    run.check(relative_error(r.t_branch, p.t_branch) <= 0.25, "branching time within 25 % of the published one");
+    run.check(r.v_max < cR, "maximum tip speed below the Rayleigh speed");
+    return run.finish("%s, dx %.3g mm: branch at x = %.1f mm, t = %.2f us (published %.0f mm, %.2f us)", material.c_str(), r.dx * 1e3,
+                      r.x_branch * 1e3, r.t_branch * 1e6, p.x_branch * 1e3, p.t_branch * 1e6);
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("crack_branching_glass_2d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("crack_branching_glass_2d", [&] { return run_case(argc, argv); }); }

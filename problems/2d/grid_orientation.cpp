@@ -19,13 +19,11 @@
 // Writes: summary.csv, paths.csv (centrelines), runs.csv, params.csv.
 #include "pd/damage/crack_run.hpp"
 #include "pd/damage/precrack.hpp"
-#include "pd/io/checks.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/options.hpp"
 
 #include <cstdio>
-#include <iostream>
 
 namespace {
 constexpr double pi = 3.14159265358979323846;
@@ -47,10 +45,11 @@ pd::Body<2> rotated_plate(double L, double dx, double theta)
 }
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI; defaults: a subset of spec/002 ch. 5 on a coarser lattice).
-    pd::io::Options opt("grid_orientation_2d", "Crack path vs lattice orientation and m (2D PMB, spec/002 ch. 5).");
+    pd::io::Case run("grid_orientation_2d", "Crack path vs lattice orientation and m (2D PMB, spec/002 ch. 5).", "reports/2d/grid_orientation");
+    pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 73.4e9, "Young's modulus", "Pa");
     double& rho = opt.add("rho", 2440, "density", "kg/m^3");
     double& Gc = opt.add("Gc", 7.0013, "fracture energy (s0 = 2.1070e-4 at delta = 3 mm)", "J/m^2");
@@ -65,12 +64,11 @@ static int run(int argc, char** argv)
     double& safety = opt.add("dt-factor", 0.8, "time step bound / Silling-Askari critical step");
     double& t_end = opt.add("t-end", 560e-6, "simulated time (quick: 200 us)", "s");
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
-    pd::io::add_standard(opt, "reports/2d/grid_orientation");
     for (const char* o : {"E", "rho", "Gc", "sigma", "size", "crack", "dx", "dt", "dt-factor", "t-end"}) opt.require_positive(o);
     opt.require_range("walk-threshold", 0, 1, false, true);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (!(a0 < L)) opt.fail("option --crack must be shorter than --size");
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     if (quick && !opt.given("dx")) dx = 4e-3;
     if (quick && !opt.given("t-end")) t_end = 200e-6;
     // Runs (rotation [deg], m): by default 0/3, 10/3, 10/6 (the horizontal, deviated and corrected
@@ -89,20 +87,17 @@ static int run(int argc, char** argv)
         if (a >= 90) opt.fail("option --angles: rotations must be below 90 deg");
         if (m < 1) opt.fail("option --m-list: m must be at least 1");
     }
-    const std::filesystem::path out = opt.get_string("out");
+    run.start();
+    const std::filesystem::path& out = run.out();
     // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
     // wait for a descheduled thread): one thread unless --threads is given.
-    pd::set_threads(quick && !opt.given("threads") ? 1 : opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    if (quick && !opt.given("threads")) pd::set_threads(1);
     const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::stress};
     const double thr = pd::crack::tip_threshold, nan = pd::crack::nan;
 
     pd::io::CsvWriter runs(out / "runs.csv", {"angle_deg", "m", "dx_m", "nodes", "bonds", "s0", "crack_advance_m", "rms_m", "max_m",
                                               "path_angle_deg", "horizontal", "wall_s"});
     pd::io::CsvWriter paths(out / "paths.csv", {"angle_deg", "m", "x_m", "offset_m"}, false);
-    std::vector<pd::io::SummaryRow> rows;
-    pd::io::Checks check;
     std::printf("%8s %4s %8s %10s %10s %10s %10s %11s %8s\n", "grid_deg", "m", "nodes", "advance_mm", "rms_mm", "max_mm", "angle_deg",
                 "path", "wall_s");
     for (const auto& [a_deg, m] : runs_list) {
@@ -152,21 +147,19 @@ static int run(int argc, char** argv)
             // Expected (spec/002 sec. 6, Table 5.2): 0 deg horizontal; rotated m = 3 deviated; m >= 6 horizontal.
             const double expect = a_deg == 0 || m >= 6 ? 1 : (m <= 3 ? 0 : nan);
             std::snprintf(name, sizeof name, "horizontal_grid%g_m%g", a_deg, m);
-            rows.push_back({name, horizontal ? 1.0 : 0.0, expect, nan, "-"});
+            run.summary({name, horizontal ? 1.0 : 0.0, expect, nan, "-"});
             std::snprintf(name, sizeof name, "path_max_offset_grid%g_m%g_m", a_deg, m);
-            rows.push_back({name, dev.max, nan, nan, "m"});
+            run.summary({name, dev.max, nan, nan, "m"});
             std::snprintf(name, sizeof name, "path_rms_grid%g_m%g_m", a_deg, m);
-            rows.push_back({name, dev.rms, nan, nan, "m"});
+            run.summary({name, dev.rms, nan, nan, "m"});
             std::snprintf(name, sizeof name, "path_angle_grid%g_m%g_deg", a_deg, m);
-            rows.push_back({name, ang, nan, nan, "deg"});
-            check(!std::isnan(ang), std::string("crack grows on the ") + std::to_string(static_cast<int>(a_deg)) + " deg grid, m = " +
-                                        std::to_string(m).substr(0, 4));
-            if (a_deg == 0) check(horizontal, "0 deg grid: horizontal path (spec/002 Fig. 5.1b)");
+            run.summary({name, ang, nan, nan, "deg"});
+            run.check(!std::isnan(ang), std::string("crack grows on the ") + std::to_string(static_cast<int>(a_deg)) + " deg grid, m = " +
+                                            std::to_string(m).substr(0, 4));
+            if (a_deg == 0) run.check(horizontal, "0 deg grid: horizontal path (spec/002 Fig. 5.1b)");
         }
     paths.flush();
-    pd::io::write_summary(out / "summary.csv", rows);
-    std::printf("%s: crack paths on %zu grids (runs.csv)\n", check.passed() ? "PASS" : "FAIL", runs_list.size());
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    return run.finish("crack paths on %zu grids (runs.csv)", runs_list.size());
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("grid_orientation_2d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("grid_orientation_2d", [&] { return run_case(argc, argv); }); }

@@ -16,10 +16,8 @@
 // Writes: summary.csv (row t50, s), work_precision.csv, params.csv.
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/time_to_reach.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/lattice.hpp"
 #include "reference/heat_1d.hpp"
 #include "reference/heat_prism.hpp"
@@ -27,7 +25,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 
 namespace {
 
@@ -88,10 +85,11 @@ pd::ReachResult run_prism(const Prism& p, const Setup& s, pd::HeatIntegrator sch
     return r;
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: spec/000b T8).
-    pd::io::Options opt("agwai_prism_3d", "3D prism, ends held at 100 C: Agwai PD t50 vs classical (spec/000b T8).");
+    pd::io::Case run("agwai_prism_3d", "3D prism, ends held at 100 C: Agwai PD t50 vs classical (spec/000b T8).", "reports/3d/agwai_prism");
+    pd::io::Options& opt = run.opt;
     opt.add("dx", 1e-3, "lattice spacing (cube side)", "m");
     opt.add("length", 0.1, "prism length", "m");
     opt.add("width", 0.01, "side of the square section", "m");
@@ -103,18 +101,14 @@ int run(int argc, char** argv)
     opt.add_string("bc", "outside", "held layers outside or inside the prism", {"outside", "inside"});
     opt.add_string("correction", "none", "thermal correction factor", {"none", "per-node", "pair-mean"});
     opt.add_flag("no-work-precision", "skip the integrator comparison");
-    pd::io::add_standard(opt, "reports/3d/agwai_prism");
     for (const char* o : {"dx", "length", "width", "k", "rho", "c", "dt-factor"}) opt.require_positive(o);
+    opt.require_range("dt-factor", 0, 1, false, false);  // explicit Euler limit
     opt.require_at_least("m", 1);
-    opt.parse(argc, argv);
-    opt.echo(std::cout);
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
-    const bool quick = opt.get_flag("quick");
+    run.start(argc, argv);
+    const bool quick = run.quick();
     const double dx = quick ? std::max(opt.get("dx"), 2e-3) : opt.get("dx");
     const Prism p{opt.get("length"), opt.get("width"), dx, opt.get("m") * dx, opt.get("rho") * opt.get("c"), opt.get("k"),
                   opt.get_string("bc") == "outside", pd::parse_thermal_correction(opt.get_string("correction"))};
-    if (opt.get("dt-factor") >= 1) pd::io::fail_input("agwai_prism_3d", "option --dt-factor must be < 1 (explicit Euler limit), got " + opt.get_string("dt-factor"));
     const bool published = !opt.given("dx") && !opt.given("length") && !opt.given("width") && !opt.given("m") && !quick &&
                            p.outside && p.corr == pd::ThermalCorrection::none;
 
@@ -132,16 +126,16 @@ int run(int argc, char** argv)
     const double t50_exact = pd::ref::heat_bar_exact_time_to({p.L, alpha, T_start, T_held}, 0.5 * p.L, T_target);
     std::printf("classical 3D (FD + CVODE, same cells) t50 = %.4f s; 1D continuum %.4f s\n", t50_classical, t50_exact);
     std::printf("PD vs classical: %+.3f %% (source: +12.907 %% over its 1D classical 78.639 s)\n", 100 * (pdr.t / t50_classical - 1));
-    std::vector<pd::io::SummaryRow> summary = {
+    run.summary({
         {"t50", pdr.t, published ? t50_source : t50_classical, pd::io::relative_error(pdr.t, published ? t50_source : t50_classical), "s"},
         {"t50_vs_reconstruction", pdr.t, published ? t50_recon : NAN, published ? pd::io::relative_error(pdr.t, t50_recon) : NAN, "s"},
         {"t50_classical_3d", t50_classical, t50_exact, pd::io::relative_error(t50_classical, t50_exact), "s"},
-        {"dt_crit_thermal", dt_crit, published ? 0.062395 : NAN, published ? pd::io::relative_error(dt_crit, 0.062395) : NAN, "s"}};
+        {"dt_crit_thermal", dt_crit, published ? 0.062395 : NAN, published ? pd::io::relative_error(dt_crit, 0.062395) : NAN, "s"}});
 
     // 4. Work-precision: the three integrators against CVODE at rtol 1e-9 on the same PD model.
     if (!opt.get_flag("no-work-precision")) {
         const double t_ref = run_prism(p, s, pd::HeatIntegrator::cvode, 1e-9).t;
-        pd::io::CsvWriter wp(out + "/work_precision.csv", {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t50_s"});
+        pd::io::CsvWriter wp(run.file("work_precision.csv"), {"integrator", "dt_s", "rtol", "error", "wall_s", "steps", "t50_s"});
         auto row = [&](pd::HeatIntegrator sch, double step, const pd::ReachResult& r) {
             const bool cv = sch == pd::HeatIntegrator::cvode;
             const double dt = cv ? r.t / r.steps : sch == pd::HeatIntegrator::explicit_euler ? step * dt_crit : step;
@@ -158,17 +152,13 @@ int run(int argc, char** argv)
     }
 
     // 5. Checks and verdict.
-    pd::io::Checks check;
-    check(pdr.t > t50_classical, "PD prism diffuses more slowly than the classical one (source Fig. 6.3)");
-    check(std::abs(t50_classical / t50_exact - 1) < 0.01, "classical 3D reference within 1 % of the 1D continuum value");
+    run.check(pdr.t > t50_classical, "PD prism diffuses more slowly than the classical one (source Fig. 6.3)");
+    run.check(std::abs(t50_classical / t50_exact - 1) < 0.01, "classical 3D reference within 1 % of the 1D continuum value");
     // The reconstruction used the same conventions; 0.1 % covers its averaging/interpolation details.
-    if (published) check(std::abs(pdr.t / t50_recon - 1) < 1e-3, "t50 within 0.1 % of the spec reconstruction 88.768 s");
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: t50 = %.3f s (source %.3f s, classical %.3f s)\n", check.passed() ? "PASS" : "FAIL (see the checks above)",
-                pdr.t, t50_source, t50_classical);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    if (published) run.check(std::abs(pdr.t / t50_recon - 1) < 1e-3, "t50 within 0.1 % of the spec reconstruction 88.768 s");
+    return run.finish("t50 = %.3f s (source %.3f s, classical %.3f s)", pdr.t, t50_source, t50_classical);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("agwai_prism_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("agwai_prism_3d", [&] { return run_case(argc, argv); }); }

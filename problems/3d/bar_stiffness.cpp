@@ -20,16 +20,11 @@
 #include "pd/bc/bar_supports.hpp"
 #include "pd/bc/grips.hpp"
 #include "pd/io/bar_options.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/measure/bar_sections.hpp"
-#include "pd/models/correspondence.hpp"
-#include "pd/models/lps.hpp"
-#include "pd/models/pals.hpp"
-#include "pd/models/pmb.hpp"
+#include "pd/models/registry.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/solve/newton.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
@@ -37,8 +32,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <map>
+#include <type_traits>
 
 namespace {
 
@@ -113,10 +108,12 @@ Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, const 
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case), echoed and saved.
-    pd::io::Options opt("bar_stiffness_3d", "Quasi-static 3D bar stiffness (spec/000b V2): measured E per PD model vs n.");
+    pd::io::Case run("bar_stiffness_3d", "Quasi-static 3D bar stiffness (spec/000b V2): measured E per PD model vs n.",
+                     "reports/3d/bar_stiffness");
+    pd::io::Options& opt = run.opt;
     const pd::io::BarOptions bar_opt = pd::io::add_bar_options(opt, 0.01, "end displacement / length");
     const auto& [E, nu, L, W, T, strain, m, grip] = bar_opt;
     int& n_one = opt.add_int("n", 0, "nodes through the thickness (0: sweep 1 2 4 5 8 10 up to --n-max)");
@@ -134,17 +131,13 @@ static int run(int argc, char** argv)
     bool& reuse = opt.add_flag("reuse-tangent", "Newton: keep the tangent while the residual falls 10x per iteration");
     double& bound_factor = opt.add("bound-factor", 1, "PALS/correspondence ADR density: model bound x this");
     std::string& start = opt.add_string("start", "uniform", "ADR initial guess (uniform uniaxial field, or zero)", {"uniform", "zero"});
-    pd::io::add_standard(opt, "reports/3d/bar_stiffness");
     for (const char* o : {"tol", "bound-factor"}) opt.require_positive(o);
     for (const char* o : {"n", "C-hg"}) opt.require_at_least(o, 0);
     for (const char* o : {"n-max", "max-iter", "newton-max-iter"}) opt.require_at_least(o, 1);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     bar_opt.validate(opt);
-    if (opt.get_flag("quick") && !opt.given("n-max")) n_max = 2;
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    if (run.quick() && !opt.given("n-max")) n_max = 2;
+    run.start();
     std::vector<int> ns;
     for (int n : {1, 2, 4, 5, 8, 10}) if (n <= n_max) ns.push_back(n);
     if (n_one > 0) ns = {n_one};
@@ -155,7 +148,7 @@ static int run(int argc, char** argv)
     const SolverChoice solve_by{solver == "newton", tol, max_iter, {.max_iter = newton_iter, .reuse_tangent = reuse}, linear};
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     const double E_pmb = 3 * mat.K * (1 - 2 * 0.25);  // PMB: nu = 1/4, E = 3K(1 - 2 nu) [Pa]
-    pd::io::CsvWriter conv(out / "convergence.csv",
+    pd::io::CsvWriter conv(run.file("convergence.csv"),
                            {"n", "dx_m", "delta_m", "m", "nodes", "bonds", "model", "surface_correction", "converged",
                             "iterations", "tangents", "residual", "support_reaction", "E_meas_Pa", "E_end_Pa", "E_expected_Pa", "error", "rate", "wall_s"});
     std::map<std::string, std::pair<double, double>> last;  // case -> (dx, error) for the rate
@@ -175,26 +168,16 @@ static int run(int argc, char** argv)
         auto scaled = [&](pd::Field<3> G) { for (auto& c : G.c) for (double& g : c) g *= bound_factor; return G; };
         for (const std::string& name : models)
             for (const std::string& corr : name == "pmb" || name == "lps" ? pmb_sc : std::vector<std::string>{"n/a"}) {
-                // 4.-5. Grips, warm start, ADR.
-                Outcome o;
+                // 4.-5. Surface correction (PMB, LPS), grips, warm start, ADR.
                 const double nu_w = name == "pmb" ? 0.25 : nu;
-                if (name == "pmb") {
-                    pd::PMB model({.material = mat, .dim = 3}, pd::Influence{}, bonds);
-                    pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr), classical);
-                    o = relax(model, pd::stiffness_bound(model, bonds, s.bar.body.x), s, bonds, nu_w, solve_by, start == "uniform");
-                } else if (name == "lps" || name == "lps-scf") {
-                    pd::LPS model({.material = mat, .dim = 3}, bonds);
-                    if (name == "lps-scf") model.apply_shear_correction(s.bar.body.x);
-                    else pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr), classical);
-                    o = relax(model, pd::stiffness_bound(model, bonds, s.bar.body.x), s, bonds, nu_w, solve_by, start == "uniform");
-                } else if (name == "pals") {
-                    pd::PALS model({.material = mat}, s.bar.body, bonds);
-                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.bar.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
-                } else {
-                    using Corr = pd::Correspondence<3>;
-                    Corr model({.material = mat, .law = Corr::Law::linear, .C_hg = C_hg}, s.bar.body, bonds);
-                    o = relax(model, scaled(pd::stiffness_bound(model, bonds, s.bar.body.x)), s, bonds, nu_w, solve_by, start == "uniform");
-                }
+                const Outcome o = pd::with_model(pd::ModelChoice{.name = name, .material = mat, .C_hg = C_hg}, s.bar.body, bonds, [&](auto& model) {
+                    using Model = std::decay_t<decltype(model)>;
+                    constexpr bool ordinary = std::is_same_v<Model, pd::PMB> || std::is_same_v<Model, pd::LPS>;
+                    if constexpr (ordinary)
+                        if (corr != "n/a") pd::apply_surface_correction(model, s.bar.body, bonds, pd::parse_surface_correction(corr), classical);
+                    const pd::Field<3> bound = pd::stiffness_bound(model, bonds, s.bar.body.x);
+                    return relax(model, ordinary ? bound : scaled(bound), s, bonds, nu_w, solve_by, start == "uniform");
+                });
                 // 6. Compare with the expected modulus, write the row, print.
                 const double E_exp = name == "pmb" ? E_pmb : E;
                 const std::string key = name + (corr == "energy" ? "_sc" : "");
@@ -222,29 +205,26 @@ static int run(int argc, char** argv)
     // correction brings PMB closer to 1.5 K; in the default case each model's rel_error at the finest n is below
     // its error in the report's table (ADR) plus 10 %: the runs are deterministic, solver tolerance and Newton vs
     // ADR move E by < 1e-5. Tiers n = 2 (quick) and n = 4..10 (largest of 4, 5, 8, 10); n = 1 is degenerate.
-    pd::io::Checks check;
-    check(all_converged, "every " + solver + " solve converged");
+    run.check(all_converged, "every " + solver + " solve converged");
     const std::map<std::string, std::array<double, 2>> error_bound{{"pmb", {0.541, 0.320}}, {"pmb_sc", {0.164, 0.0585}},
         {"lps", {1.095, 0.184}}, {"lps_sc", {0.085, 0.052}}, {"lps-scf", {0.430, 0.180}}, {"pals", {0.0137, 0.0068}}, {"correspondence", {2.06e-3, 5.75e-5}}};
     const int nf = ns.back(), tier = nf == 2 ? 0 : nf == 4 || nf == 5 || nf == 8 || nf == 10 ? 1 : -1;
     bool documented = tier >= 0;  // and no physical option changed
     for (const char* o : {"E", "nu", "length", "width", "thickness", "strain", "m", "grip", "C-hg"}) documented &= !opt.given(o);
-    std::vector<pd::io::SummaryRow> rows;
     for (const auto& [key, o] : finest) {
         const double ref = key.rfind("pmb", 0) == 0 ? E_pmb : E, err = pd::io::relative_error(o.E_meas, ref);
-        rows.push_back({"E_" + key, o.E_meas, ref, err, "Pa"});
-        if (ref != E) rows.push_back({"E_" + key + "_vs_input_E", o.E_meas, E, pd::io::relative_error(o.E_meas, E), "Pa"});
-        if (documented) check(err < error_bound.at(key)[tier], "E_" + key + " rel_error < " + pd::io::format_shortest(error_bound.at(key)[tier]));
+        run.summary({"E_" + key, o.E_meas, ref, err, "Pa"});
+        if (ref != E) run.summary({"E_" + key + "_vs_input_E", o.E_meas, E, pd::io::relative_error(o.E_meas, E), "Pa"});
+        if (documented) run.check(err < error_bound.at(key)[tier], "E_" + key + " rel_error < " + pd::io::format_shortest(error_bound.at(key)[tier]));
     }
-    pd::io::write_summary(out / "summary.csv", rows);
     std::printf("\nfinest n = %d (summary.csv); PMB expected E = 1.5 K = %.5e Pa (input E = %.5e Pa)\n", ns.back(), E_pmb, E);
     if (finest.count("pmb") && finest.count("pmb_sc")) {
         const double e0 = pd::io::relative_error(finest["pmb"].E_meas, E_pmb), e1 = pd::io::relative_error(finest["pmb_sc"].E_meas, E_pmb);
         std::printf("PMB error %.3e without, %.3e with surface correction\n", e0, e1);
-        check(e1 < e0, "the energy surface correction brings PMB closer to 1.5 K (finest n)");
+        run.check(e1 < e0, "the energy surface correction brings PMB closer to 1.5 K (finest n)");
     }
-    std::printf("%s\n", check.passed() ? "PASS" : "FAIL");
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    return run.finish("E of %zu cases (model, correction) at finest n = %d; %s solves %s", finest.size(), ns.back(), solver.c_str(),
+                      all_converged ? "all converged" : "NOT all converged");
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("bar_stiffness_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("bar_stiffness_3d", [&] { return run_case(argc, argv); }); }

@@ -17,10 +17,8 @@
 //      are compared with 14 ms x (8 mm/s / speed) x (size / 0.5 m).
 // Writes: curve_seed<k>.csv (t, U, F, stress, strain, energies), summary.csv, seeds.csv, params.csv.
 #include "pd/damage/critical_stretch.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/random_field.hpp"
@@ -29,7 +27,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 
 namespace {
 
@@ -37,10 +34,12 @@ struct SeedResult { double t_peak = NAN, F_peak = NAN, strain_peak = NAN, modulu
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case), echoed and saved.
-    pd::io::Options opt("concrete_plate_random_3d", "Concrete plate in tension with random critical stretch (spec/001_004 V6).");
+    pd::io::Case run("concrete_plate_random_3d", "Concrete plate in tension with random critical stretch (spec/001_004 V6).",
+                     "reports/3d/concrete_plate_random");
+    pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 32e9, "Young's modulus", "Pa");
     double& rho = opt.add("rho", 2400, "density", "kg/m^3");
     double& L = opt.add("size", 0.5, "plate side (quick: 0.15)", "m");
@@ -56,20 +55,17 @@ static int run(int argc, char** argv)
     int& seed0 = opt.add_int("seed", 1, "first seed");
     double& t_end = opt.add("t-end", 0.025, "end time (default scaled by (8e-3/speed) (size/0.5))", "s");
     double& dt_factor = opt.add("dt-factor", 0.7, "time step / Silling-Askari critical step");
-    pd::io::add_standard(opt, "reports/3d/concrete_plate_random");
     for (const char* o : {"E", "rho", "size", "thickness", "delta", "speed", "s-mean", "t-end", "dt-factor"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
     opt.require_at_least("seeds", 1);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (!(s_sd >= 0)) opt.fail("option --s-sd must be >= 0");
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     if (quick && !opt.given("size")) L = 0.15;
     if (quick && !opt.given("seeds")) seeds = 2;
     if (!opt.given("t-end")) t_end *= (8e-3 / speed) * (L / 0.5);
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    run.start();
+    const std::filesystem::path& out = run.out();
     const pd::io::Timer timer;
 
     // 2. Discretisation: one layer of points, grips delta wide at both ends.
@@ -162,7 +158,7 @@ static int run(int argc, char** argv)
     for (const auto& r : res) fractured += r.failed;
     const double t_ref = 14e-3 * (8e-3 / speed) * (L / 0.5), nan = NAN;  // source's time, scaled with --speed, --size
     using pd::io::relative_error;
-    const std::vector<pd::io::SummaryRow> rows{
+    run.summary({
         {"fracture_time_mean", t_mu, t_ref, relative_error(t_mu, t_ref), "s"},
         {"fracture_time_sd", t_sd, nan, nan, "s"},
         {"peak_strain_mean", e_mu, 14e-3 * 8e-3 / 0.5, relative_error(e_mu, 14e-3 * 8e-3 / 0.5), "-"},  // [DERIVED] 2.24e-4
@@ -172,9 +168,8 @@ static int run(int argc, char** argv)
         {"apparent_modulus_mean", M_mu, E_ps, relative_error(M_mu, E_ps), "Pa"},
         {"apparent_modulus_over_E", M_mu / E, 1.10, relative_error(M_mu / E, 1.10), "-"},  // Peridigm: about +10 %
         {"seeds_fractured", static_cast<double>(fractured), static_cast<double>(seeds), nan, "-"},
-        {"wall_time", wall, nan, nan, "s"}};
-    pd::io::write_summary(out / "summary.csv", rows);
-    pd::io::print_summary(rows, 28);
+        {"wall_time", wall, nan, nan, "s"}});
+    run.print_summary(28);
 
     // Checks: every seed fractures; modulus within 10 % of E/(1 - nu^2) (PD surface softening of
     // the free edges and the grip transition; not a published tolerance); the weakest link fails
@@ -183,18 +178,15 @@ static int run(int argc, char** argv)
     // without a tolerance or peak stress), and this model fails about 37 % earlier at 8 mm/s
     // (reports/3d/concrete_plate_random.md). The verdict line says so instead of letting PASS
     // suggest the time is reproduced (10 %: the modulus band above).
-    pd::io::Checks check;
-    check(fractured == seeds, "every seed fractures before t_end");
-    check(std::abs(M_mu / E_ps - 1) < 0.10, "apparent modulus within 10 % of E/(1 - nu^2)");
-    check(e_mu < s_mean, "mean peak strain below the mean critical stretch (weakest link)");
-    check(seeds == 1 || t_sd > 0, "fracture time varies with the seed");
+    run.check(fractured == seeds, "every seed fractures before t_end");
+    run.check(std::abs(M_mu / E_ps - 1) < 0.10, "apparent modulus within 10 % of E/(1 - nu^2)");
+    run.check(e_mu < s_mean, "mean peak strain below the mean critical stretch (weakest link)");
+    run.check(seeds == 1 || t_sd > 0, "fracture time varies with the seed");
     const double t_err = relative_error(t_mu, t_ref);
-    std::printf("\n%s (checked: modulus, every seed fractures, weakest link, spread): fracture at %.3g +- %.2g ms, source about %.3g ms: %s (%+.0f %%); "
-                "modulus %.4g GPa (E/(1-nu^2) %.4g), %.1f s\n",
-                check.passed() ? "PASS" : "FAIL", t_mu * 1e3, t_sd * 1e3, t_ref * 1e3,
-                std::abs(t_err) < 0.10 ? "fracture time reproduced within 10 %" : "fracture time NOT reproduced",
-                100 * (t_mu / t_ref - 1), M_mu / 1e9, E_ps / 1e9, wall);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    return run.finish("(checked: modulus, every seed fractures, weakest link, spread) fracture at %.3g +- %.2g ms, source about %.3g ms: "
+                      "%s (%+.0f %%); modulus %.4g GPa (E/(1-nu^2) %.4g), %.1f s", t_mu * 1e3, t_sd * 1e3, t_ref * 1e3,
+                      std::abs(t_err) < 0.10 ? "fracture time reproduced within 10 %" : "fracture time NOT reproduced",
+                      100 * (t_mu / t_ref - 1), M_mu / 1e9, E_ps / 1e9, wall);
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("concrete_plate_random_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("concrete_plate_random_3d", [&] { return run_case(argc, argv); }); }

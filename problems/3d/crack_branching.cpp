@@ -14,13 +14,11 @@
 // damage.vtu (final phi, ParaView), params.csv.
 #include "pd/damage/crack_run.hpp"
 #include "pd/damage/precrack.hpp"
-#include "pd/io/checks.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/vtu.hpp"
 
 #include <cstdio>
-#include <iostream>
 
 namespace {
 
@@ -49,10 +47,12 @@ Layer layer(const pd::Body<3>& body, long k)
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI; defaults = spec/002 V8), echoed and saved.
-    pd::io::Options opt("crack_branching_3d", "Dynamic crack branching in a pre-cracked Duran 50 plate (3D PMB, uniform grid).");
+    pd::io::Case run("crack_branching_3d", "Dynamic crack branching in a pre-cracked Duran 50 plate (3D PMB, uniform grid).",
+                     "reports/3d/crack_branching", "output folder (CSV files, params.csv, damage.vtu)");
+    pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 65e9, "Young's modulus", "Pa");
     double& rho = opt.add("rho", 2235, "density", "kg/m^3");
     double& Gc = opt.add("Gc", 204, "fracture energy", "J/m^2");
@@ -70,22 +70,20 @@ static int run(int argc, char** argv)
     double& window = opt.add("window", 2e-6, "crack-speed window (spec/002: 2 us)", "s");
     double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
-    pd::io::add_standard(opt, "reports/3d/crack_branching", "output folder (CSV files, params.csv, damage.vtu)");
     for (const char* o : {"E", "rho", "Gc", "sigma", "length", "height", "thickness", "crack", "dx", "dt", "dt-factor", "t-end", "window"})
         opt.require_positive(o);
     opt.require_at_least("m", 1);
     opt.require_range("threshold", 0, 1, false, true);
     opt.require_range("walk-threshold", 0, 1, false, true);
-    opt.parse(argc, argv);
-    const bool quick = opt.get_flag("quick");
+    run.parse(argc, argv);
+    const bool quick = run.quick();
     if (quick && !opt.given("dx")) dx = 2e-3;  // 2000 nodes: the whole pipeline in seconds
     if (!(a0 < L)) opt.fail("option --crack must be shorter than --length");
     if (std::lround(H / dx) < 2 * m + 2) opt.fail("option --dx: dx too coarse for the plate height");
     if (std::lround(T / dx) < 1) opt.fail("option --dx: dx larger than the plate thickness");
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(quick && !opt.given("threads") ? 1 : opt.get_int("threads"));  // quick: too small to gain from threads
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    run.start();
+    const std::filesystem::path& out = run.out();
+    if (quick && !opt.given("threads")) pd::set_threads(1);  // quick: too small to gain from threads
     const pd::crack::Material3D mat{E, rho, Gc};
     const double nan = pd::crack::nan, delta = m * dx;
 
@@ -183,7 +181,7 @@ static int run(int argc, char** argv)
     using pd::io::relative_error;
     const bool published_grid = std::abs(dx - 1e-3) < 1e-9 && std::abs(L - 0.1) + std::abs(H - 0.04) + std::abs(T - 0.003) < 1e-9;
     const double n_coarse = published_grid ? 12000 : nan, n_refined = 26644;  // spec/002 V8: uniform 1 mm grid; after refinement [-]
-    const std::vector<pd::io::SummaryRow> rows{
+    run.summary({
         {"nodes", static_cast<double>(body.size()), n_coarse, relative_error(static_cast<double>(body.size()), n_coarse), "-"},
         {"nodes_refined_source", nan, n_refined, nan, "-"},  // not run: no adaptive refinement in this library
         {"bonds", static_cast<double>(bonds.size()), nan, nan, "-"},
@@ -203,22 +201,18 @@ static int run(int argc, char** argv)
         {"damaged_nodes_mid", damaged(mid), nan, nan, "-"},
         {"damaged_nodes_surface", damaged(bottom), nan, nan, "-"},
         {"steps", static_cast<double>(info.steps), nan, nan, "-"},
-        {"wall_time", info.wall, nan, nan, "s"}};
-    pd::io::write_summary(out / "summary.csv", rows);
-    pd::io::print_summary(rows, 22);
+        {"wall_time", info.wall, nan, nan, "s"}});
+    run.print_summary(22);
 
     // The source's result is qualitative (a branch forms); the tip may not outrun the Rayleigh
     // speed; a stable run keeps displacements far below the plate height (0.1 H: a blown-up run
     // moves nodes by more than the plate size, a branching plate opens by well under a millimetre).
-    pd::io::Checks check;
-    check(!std::isnan(t_init), "the crack starts to run");
-    check(br.found, "a branch forms on the mid layer (crack_metrics rule)");
-    check(v_max < cR, "maximum tip speed below the Rayleigh speed");
-    check(std::isfinite(u_max) && u_max < 0.1 * H, "stable run (largest displacement below 0.1 H)");
-    std::printf("%s: %zu nodes, dx %.3g mm: branch at x = %.1f mm, t = %.2f us; v_max %.0f m/s (c_R %.0f); %.1f s\n",
-                check.passed() ? "PASS" : "FAIL", body.size(), dx * 1e3, br.found ? br.point[0] * 1e3 : nan, t_branch * 1e6, v_max, cR,
-                info.wall);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.check(!std::isnan(t_init), "the crack starts to run");
+    run.check(br.found, "a branch forms on the mid layer (crack_metrics rule)");
+    run.check(v_max < cR, "maximum tip speed below the Rayleigh speed");
+    run.check(std::isfinite(u_max) && u_max < 0.1 * H, "stable run (largest displacement below 0.1 H)");
+    return run.finish("%zu nodes, dx %.3g mm: branch at x = %.1f mm, t = %.2f us; v_max %.0f m/s (c_R %.0f); %.1f s", body.size(),
+                      dx * 1e3, br.found ? br.point[0] * 1e3 : nan, t_branch * 1e6, v_max, cR, info.wall);
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("crack_branching_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("crack_branching_3d", [&] { return run_case(argc, argv); }); }

@@ -25,11 +25,9 @@
 // first break, distances of that bond from the nearer end and the nearest lateral face), summary.csv, params.csv.
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/pmb.hpp"
@@ -40,7 +38,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <tuple>
 #include <utility>
 
@@ -147,10 +144,11 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro)
     return {t_break, timer.seconds(), from_end, from_face};
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: the thesis' bar, rho and hourglass assumed), echoed and saved.
-    pd::io::Options opt("delta_m_bar_3d", "Fracture time of a bar vs delta and m (spec/000c V11).");
+    pd::io::Case run("delta_m_bar_3d", "Fracture time of a bar vs delta and m (spec/000c V11).", "reports/3d/delta_m_bar");
+    pd::io::Options& opt = run.opt;
     opt.add_string("deltas", "", "horizons (default: see header)");
     opt.add_string("ms", "", "ratios m (default: see header)");
     opt.add_flag("full", "all 20 cells of Tables 8.4-8.5");
@@ -165,12 +163,11 @@ int run(int argc, char** argv)
                                         {"outside", "inside"});
     opt.add("rate", 20, "engineering strain rate", "1/s");
     opt.add("dt-factor", 0.5, "safety factor on the Silling-Askari step", "-");
-    pd::io::add_standard(opt, "reports/3d/delta_m_bar");
     for (const char* q : {"E", "rho", "Gc", "rate", "dt-factor"}) opt.require_positive(q);
     opt.require_range("nu", -1, 0.5, false, false);
     opt.require_at_least("C-hg", 0);
-    opt.parse(argc, argv);
-    const bool quick = opt.get_flag("quick"), full = opt.get_flag("full");
+    run.parse(argc, argv);
+    const bool quick = run.quick(), full = opt.get_flag("full");
     std::vector<std::pair<double, double>> cells;  // (delta, m)
     if (opt.given("deltas") || opt.given("ms")) {
         if (!opt.given("deltas") || !opt.given("ms")) opt.fail("--deltas and --ms go together");
@@ -186,20 +183,15 @@ int run(int argc, char** argv)
             for (double m : table_m)
                 if (full || (m == 3.05 && d >= 0.38e-3) || d == 0.61e-3) cells.push_back({d, m});
     }
-    opt.echo(std::cout);
-    pd::set_threads(opt.get_int("threads"));
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
+    run.start();
     const Material p{pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu")), opt.get("rho"), opt.get("Gc"), opt.get("C-hg"),
                      opt.get("rate"), opt.get("dt-factor"), !opt.get_flag("no-hourglass-work"),
                      opt.get_flag("lateral-free"), grips == "inside"};
 
     // 2-5. Every cell, both criteria.
-    pd::io::Checks check;
-    pd::io::CsvWriter csv(out + "/fracture_times.csv", {"delta_m", "m", "criterion", "t_fracture_s", "t_published_s", "rel_error",
-                                                        "t_quasi_static_s", "wall_s", "strain_at_fracture", "break_from_end_m",
-                                                        "break_from_face_m"});
-    std::vector<pd::io::SummaryRow> summary;
+    pd::io::CsvWriter csv(run.file("fracture_times.csv"), {"delta_m", "m", "criterion", "t_fracture_s", "t_published_s", "rel_error",
+                                                           "t_quasi_static_s", "wall_s", "strain_at_fracture", "break_from_end_m",
+                                                           "break_from_face_m"});
     std::printf("%-8s %-5s %-8s %10s %10s %8s %10s %8s %9s %7s %7s\n", "delta_mm", "m", "rule", "ours_us", "pub_us", "error", "qs_us", "wall_s",
                 "strain", "end_mm", "face_mm");
     std::vector<std::array<double, 3>> m305;  // (delta, t_micro, t_stretch) at m = 3.05
@@ -215,8 +207,8 @@ int run(int argc, char** argv)
             csv.row({delta, m, std::string(rule), t, ref, pd::io::relative_error(t, ref), t_qs, wall, t * p.rate, from_end, from_face});
             char key[64];
             std::snprintf(key, sizeof key, "t_%s_delta%.2fmm_m%.2f_s", rule, delta * 1e3, m);
-            summary.push_back({key, t, ref, pd::io::relative_error(t, ref), "s"});
-            check(!std::isnan(t), std::string(key) + ": the bar breaks before the end of the pull");
+            run.summary({key, t, ref, pd::io::relative_error(t, ref), "s"});
+            run.check(!std::isnan(t), std::string(key) + ": the bar breaks before the end of the pull");
             (micro ? row[1] : row[2]) = t;
         }
         if (m == 3.05) m305.push_back(row);
@@ -227,13 +219,10 @@ int run(int argc, char** argv)
         for (std::size_t b = a + 1; b < m305.size(); ++b)
             if (m305[a][0] < m305[b][0])
                 for (int r : {1, 2})
-                    check(m305[b][r] < m305[a][r], std::string(r == 1 ? "micro" : "stretch") + ": larger delta breaks earlier at m = 3.05");
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s (trend: earlier fracture for larger delta; times against Tables 8.4-8.5 reported, not asserted)\n",
-                check.passed() ? "PASS" : "FAIL (see the checks above)");
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+                    run.check(m305[b][r] < m305[a][r], std::string(r == 1 ? "micro" : "stretch") + ": larger delta breaks earlier at m = 3.05");
+    return run.finish("trend: earlier fracture for larger delta; times against Tables 8.4-8.5 reported, not asserted");
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("delta_m_bar_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("delta_m_bar_3d", [&] { return run_case(argc, argv); }); }

@@ -22,22 +22,17 @@
 // params.csv.
 #include "pd/analysis/staggered_modes.hpp"
 #include "pd/analysis/stiffness_matrix.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
-#include "pd/models/correspondence.hpp"
-#include "pd/models/lps.hpp"
-#include "pd/models/pals.hpp"
-#include "pd/models/pmb.hpp"
+#include "pd/models/registry.hpp"
 #include "reference/pmb_pair_stiffness.hpp"
 
 #include <Eigen/Dense>
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <numbers>
 
 namespace {
@@ -77,10 +72,12 @@ Modes analyse(const Mat& K, const pd::Body<D>& body, double zero_tol)
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI), echoed and saved.
-    pd::io::Options opt("hourglass_modes_3d", "Zero-energy modes: stiffness eigenvalues of a free cube, correspondence vs PMB/LPS/PALS.");
+    pd::io::Case run("hourglass_modes_3d", "Zero-energy modes: stiffness eigenvalues of a free cube, correspondence vs PMB/LPS/PALS.",
+                     "reports/3d/hourglass_modes");
+    pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 200e9, "Young's modulus", "Pa");
     double& nu = opt.add("nu", 0.3, "Poisson's ratio");
     double& dx = opt.add("dx", 1e-3, "lattice spacing", "m");
@@ -92,23 +89,18 @@ static int run(int argc, char** argv)
     double& zero_tol = opt.add("zero-tol", 1e-8, "near-zero eigenvalue threshold, relative to lambda_max");
     double& h_rel = opt.add("h", 1e-5, "finite-difference step, relative to dx");
     int& spectrum = opt.add_int("spectrum", 100, "lowest eigenvalues per model written to eigenvalues.csv (0: all)");
-    pd::io::add_standard(opt, "reports/3d/hourglass_modes");
     for (const char* o : {"E", "dx", "zero-tol", "h"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
     opt.require_at_least("n", 2);
     opt.require_at_least("n2", 0);
     opt.require_at_least("spectrum", 0);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const std::vector<double> C_hg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
-    const bool quick = opt.get_flag("quick");
-    if (quick && !opt.given("n")) n = 5;
-    if (quick && !opt.given("n2")) n2 = 8;
+    if (run.quick() && !opt.given("n")) n = 5;
+    if (run.quick() && !opt.given("n2")) n2 = 8;
     if (n2 == 1) opt.fail("option --n2: 0 (no 2D) or at least 2");
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    run.start();
     auto wants = [&](const char* name) { return which == "all" || which == name; };
 
     // 2. Discretisation: the free cube (and square), families with the full volumes.
@@ -117,45 +109,40 @@ static int run(int argc, char** argv)
     const pd::Body<3> body = pd::box<3>({{0, 0, 0}}, {{n * dx, n * dx, n * dx}}, dx);
     const pd::Bonds bonds = pd::build_bonds(body, delta);
     std::vector<Modes> modes;
-    // One model: FD stiffness, spectrum, interior checkerboard energy; the time includes the set-up.
-    auto run_model = [&](const std::string& name, double c, auto&& make, const auto& bd, const pd::Bonds& bb) {
+    // One model (C_hg c: correspondence; 2D plane strain, thickness dx): FD stiffness, spectrum,
+    // interior checkerboard energy; the time includes the set-up.
+    auto run_model = [&](const std::string& name, double c, const auto& bd, const pd::Bonds& bb) {
         pd::io::Timer t;
-        auto model = make();
-        Mat K = pd::fd_stiffness(model, bd, bb, h);
-        Modes md = analyse(K, bd, zero_tol);
-        md.model = name;
-        md.C_hg = c;
-        md.interior_W = pd::interior_checker_energy(model, bd, bb, E);
-        md.wall_s = t.seconds();
-        modes.push_back(std::move(md));
-        return K;
+        return pd::with_model(pd::ModelChoice{.name = name, .material = mat, .measure = dx, .C_hg = c}, bd, bb, [&](auto& model) {
+            Mat K = pd::fd_stiffness(model, bd, bb, h);
+            Modes md = analyse(K, bd, zero_tol);
+            md.model = name;
+            md.C_hg = c;
+            md.interior_W = pd::interior_checker_energy(model, bd, bb, E);
+            md.wall_s = t.seconds();
+            modes.push_back(std::move(md));
+            return K;
+        });
     };
 
     // 3.-5. Models, FD stiffness, spectra. PMB also against its analytic pair-spring matrix; LPS
     // whenever correspondence runs (the physical scale of "soft").
-    using C3 = pd::Correspondence<3>;
-    using C2 = pd::Correspondence<2>;
     double fd_error = NAN;
     if (wants("pmb")) {
-        const Mat K = run_model("pmb", NAN, [&] { return pd::PMB({.material = mat, .dim = 3}, pd::Influence{}, bonds); }, body, bonds);
+        const Mat K = run_model("pmb", NAN, body, bonds);
         const Mat Ka = pd::ref::pmb_pair_stiffness(body.x.c, body.volume, delta, 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)));
         fd_error = (K - Ka).norm() / Ka.norm();
     }
     const bool lps_ref = wants("lps") || wants("correspondence");
-    if (lps_ref) run_model("lps", NAN, [&] { return pd::LPS({.material = mat, .dim = 3}, bonds); }, body, bonds);
-    if (wants("pals")) run_model("pals", NAN, [&] { return pd::PALS({.material = mat}, body, bonds); }, body, bonds);
+    if (lps_ref) run_model("lps", NAN, body, bonds);
+    if (wants("pals")) run_model("pals", NAN, body, bonds);
     for (double c : C_hg)
-        if (wants("correspondence"))
-            run_model("correspondence", c, [&] { return C3({.material = mat, .law = C3::Law::linear, .C_hg = c}, body, bonds); }, body, bonds);
+        if (wants("correspondence")) run_model("correspondence", c, body, bonds);
     const pd::Body<2> square = pd::box<2>({{0, 0}}, {{std::max(n2, 1) * dx, std::max(n2, 1) * dx}}, dx, dx);
     const pd::Bonds b2 = pd::build_bonds(square, delta);
-    if (n2 > 0 && lps_ref)
-        run_model("lps", NAN, [&] { return pd::LPS({.material = mat, .dim = 2, .plane = pd::Plane::strain}, b2); }, square, b2);
+    if (n2 > 0 && lps_ref) run_model("lps", NAN, square, b2);
     for (double c : C_hg)
-        if (n2 > 0 && wants("correspondence"))
-            run_model("correspondence", c, [&] {
-                return C2({.material = mat, .law = C2::Law::linear, .C_hg = c, .plane = pd::Plane::strain, .measure = dx}, square, b2);
-            }, square, b2);
+        if (n2 > 0 && wants("correspondence")) run_model("correspondence", c, square, b2);
 
     // 6. Tables, CSVs, checks. Soft modes: non-rigid eigenvalues below 1/10 of the first non-rigid
     // LPS eigenvalue of the same dimension [N/m] (the softest physical mode of the same body).
@@ -181,11 +168,11 @@ static int run(int argc, char** argv)
                 }
             md.in_soft = sum / count;
         }
-    pd::io::CsvWriter csv(out / "modes.csv", {"dim", "model", "C_hg", "nodes", "dofs", "lambda_max_N_per_m", "zero_modes_extra",
+    pd::io::CsvWriter csv(run.file("modes.csv"), {"dim", "model", "C_hg", "nodes", "dofs", "lambda_max_N_per_m", "zero_modes_extra",
                                               "negative_modes", "soft_modes", "lambda_r1_rel", "lambda_r2_rel", "lambda_r3_rel",
                                               "checker_rel", "checker_env_rel", "bubble_rel", "checker_interior_W_rel", "patterns_in_soft",
                                               "asymmetry", "rigid_residual", "wall_s"});
-    pd::io::CsvWriter spectra(out / "eigenvalues.csv", {"dim", "model", "C_hg", "index", "lambda_N_per_m", "lambda_rel"});
+    pd::io::CsvWriter spectra(run.file("eigenvalues.csv"), {"dim", "model", "C_hg", "index", "lambda_N_per_m", "lambda_rel"});
     std::printf("\nzero: |lambda| < %.1e lambda_max beyond the rigid modes (3D 6, 2D 3); soft: below %.1f x the first non-rigid\n"
                 "LPS eigenvalue; r1..r3 = first non-rigid eigenvalues / lambda_max; checker, checker*env, bubble = Rayleigh\n"
                 "quotients / lambda_max; W_int = checkerboard W at full-family nodes / (E (a/dx)^2 / 2)\n",
@@ -212,33 +199,29 @@ static int run(int argc, char** argv)
     // without control has soft modes, C_hg = 0.02 (where run) leaves none; where full-family nodes
     // exist (n >= 7) the checkerboard costs no correspondence energy there (W < 1e-12, round-off)
     // and at least 0.1 of E (a/dx)^2 / 2 in the other models.
-    std::vector<pd::io::SummaryRow> rows;
-    std::string why;
-    bool ok = true;
-    auto fail = [&](const std::string& s) { ok = false; why += (why.empty() ? "" : "; ") + s; };
     if (!std::isnan(fd_error)) {
-        rows.push_back({"pmb_fd_vs_analytic_rel", fd_error, 0, NAN, "-"});
-        if (!(fd_error < 1e-8)) fail("FD stiffness misses the analytic PMB matrix");
+        run.summary({"pmb_fd_vs_analytic_rel", fd_error, 0, NAN, "-"});
+        run.check(fd_error < 1e-8, "FD stiffness = analytic PMB matrix within 1e-8 (relative Frobenius)");
     }
     for (const Modes& md : modes) {
         std::string tag = std::to_string(md.dim) + "d_" + md.model;
         if (!std::isnan(md.C_hg)) tag += "_chg" + pd::io::format_shortest(md.C_hg);
-        rows.push_back({tag + "_zero_modes", double(md.zero_extra + md.rigid), double(md.rigid),
-                        pd::io::relative_error(md.zero_extra + md.rigid, md.rigid), "-"});
-        rows.push_back({tag + "_soft_modes", double(md.soft), NAN, NAN, "-"});
-        rows.push_back({tag + "_lambda_r1_rel", md.rel(md.rigid), NAN, NAN, "-"});
-        rows.push_back({tag + "_checker_env_over_bubble", md.rq[1] / md.rq[2], NAN, NAN, "-"});
-        if (!(md.rigid_residual < 1e-8)) fail(tag + " does not annihilate the rigid modes");
-        if (md.model != "correspondence" && (md.zero_extra != 0 || md.negative != 0 || md.soft > 0))
-            fail(tag + " has zero, negative or soft modes beyond the rigid ones");
-        if (md.model == "correspondence" && md.C_hg == 0 && md.soft == 0) fail(tag + " shows no spurious soft mode");
-        if (md.model == "correspondence" && md.C_hg == 0.02 && md.soft != 0) fail(tag + " leaves soft modes");
-        if (!std::isnan(md.interior_W) && (md.model == "correspondence" ? !(md.interior_W < 1e-12) : !(md.interior_W > 0.1)))
-            fail(tag + " interior checkerboard energy off");
+        run.summary({{tag + "_zero_modes", double(md.zero_extra + md.rigid), double(md.rigid),
+                      pd::io::relative_error(md.zero_extra + md.rigid, md.rigid), "-"},
+                     {tag + "_soft_modes", double(md.soft), NAN, NAN, "-"},
+                     {tag + "_lambda_r1_rel", md.rel(md.rigid), NAN, NAN, "-"},
+                     {tag + "_checker_env_over_bubble", md.rq[1] / md.rq[2], NAN, NAN, "-"}});
+        const bool corr = md.model == "correspondence";
+        run.check(md.rigid_residual < 1e-8, tag + ": rigid modes annihilated to 1e-8 of lambda_max");
+        if (!corr) run.check(md.zero_extra == 0 && md.negative == 0 && md.soft <= 0, tag + ": no zero, negative or soft mode beyond the rigid ones");
+        if (corr && md.C_hg == 0) run.check(md.soft != 0, tag + ": spurious soft modes without control");
+        if (corr && md.C_hg == 0.02) run.check(md.soft == 0, tag + ": no soft mode at the source's C_hg");
+        if (!std::isnan(md.interior_W))
+            run.check(corr ? md.interior_W < 1e-12 : md.interior_W > 0.1,
+                      tag + (corr ? ": interior checkerboard energy < 1e-12 (round-off)" : ": interior checkerboard energy > 0.1"));
     }
-    pd::io::write_summary(out / "summary.csv", rows);
-    std::printf("%s: %s\n", ok ? "PASS" : "FAIL", ok ? "FD assembly, rigid modes, zero/soft-mode counts and hourglass lift as expected" : why.c_str());
-    return opt.get_flag("check") && !ok ? 1 : 0;
+    return run.finish("%zu spectra; FD assembly, rigid modes, zero/soft-mode counts and hourglass lift %s", modes.size(),
+                      run.passed() ? "as expected" : "NOT all as expected");
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("hourglass_modes_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("hourglass_modes_3d", [&] { return run_case(argc, argv); }); }

@@ -16,10 +16,8 @@
 //      (density 2810 kg/m^3 plays no part in the quasi-static solve.)
 // Writes: curve_<model>.csv, midsection_<model>.csv, summary.csv, params.csv.
 #include "pd/bc/grips.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/measure/bar_sections.hpp"
 #include "pd/models/plastic_correspondence.hpp"
@@ -29,7 +27,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 
 namespace {
 
@@ -113,10 +110,12 @@ Outcome load(Model& model, const Bar& s, const pd::Bonds& bonds, double strain, 
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case), echoed and saved.
-    pd::io::Options opt("jc_bar_3d", "Johnson-Cook quasi-static bar (spec/000b T6/V6): correspondence, LPS and PALS plasticity.");
+    pd::io::Case run("jc_bar_3d", "Johnson-Cook quasi-static bar (spec/000b T6/V6): correspondence, LPS and PALS plasticity.",
+                     "reports/3d/jc_bar");
+    pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 71.7e9, "Young's modulus", "Pa");
     double& nu = opt.add("nu", 0.33, "Poisson's ratio");
     double& A = opt.add("A", 546e6, "JC yield stress A", "Pa");
@@ -135,7 +134,6 @@ static int run(int argc, char** argv)
     double& tol = opt.add("tol", 1e-6, "ADR relative residual tolerance");
     int& max_iter = opt.add_int("max-iter", 200000, "ADR iteration limit per load step");
     std::string& which = opt.add_string("model", "all", "material model", {"all", "correspondence", "lps", "lps-scf", "pals"});
-    pd::io::add_standard(opt, "reports/3d/jc_bar");
     for (const char* o : {"E", "A", "n", "length", "width", "thickness", "plastic-part", "strain", "m", "grip", "tol"})
         opt.require_positive(o);
     opt.require_at_least("B", 0);
@@ -144,16 +142,13 @@ static int run(int argc, char** argv)
     opt.require_at_least("cells", 1);
     opt.require_at_least("m", 1);
     opt.require_at_least("max-iter", 1);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     if (plastic_part > 1) opt.fail("option --plastic-part must be <= 1");
-    const bool quick = opt.get_flag("quick");
-    if (quick && !opt.given("steps")) steps = 25;
-    if (quick && !opt.given("cells")) n = 2;
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    if (run.quick() && !opt.given("steps")) steps = 25;
+    if (run.quick() && !opt.given("cells")) n = 2;
+    run.start();
+    const std::filesystem::path& out = run.out();
 
     // 2. Discretisation: the gripped bar, mid-section layer, its centre and corner nodes.
     Bar s{L, W, T, T / n, m * T / n, {}, {}, {}, {}, {}};
@@ -183,8 +178,6 @@ static int run(int argc, char** argv)
     // 4.-5. Load steps per model.
     std::vector<std::string> models{"correspondence", "lps", "lps-scf", "pals"};
     if (which != "all") models = {which};
-    std::vector<pd::io::SummaryRow> rows;
-    pd::io::Checks check;
     std::printf("\n%-15s %6s %9s %12s %12s %12s %10s %12s %8s %8s %7s %8s\n", "model", "steps", "ep_c", "sigma_eq_Pa", "sigma_ref_Pa",
                 "E_init_Pa", "yield_Pa", "sigma_eng_Pa", "yc_step", "yk_step", "ep_k/c", "wall_s");
     for (const std::string& name : models) {
@@ -209,32 +202,30 @@ static int run(int argc, char** argv)
                     ref, o.E_init, o.offset_yield, o.sigma_eng, o.yield_centre, o.yield_corner, o.corner_ratio, o.wall_s);
         if (o.steps_done < steps) std::printf("    %s: %s\n", name.c_str(), o.message.c_str());
         std::fflush(stdout);
-        rows.push_back({"sigma_eq_centre_" + name, o.sigma_eq, ref, pd::io::relative_error(o.sigma_eq, ref), "Pa"});
-        rows.push_back({"ep_centre_" + name, o.ep, NAN, NAN, "-"});
-        rows.push_back({"offset_yield_" + name, o.offset_yield, A, pd::io::relative_error(o.offset_yield, A), "Pa"});
-        rows.push_back({"offset_yield_vs_curve_at_0.002_" + name, o.offset_yield, jc.hardening(0.002),
-                        pd::io::relative_error(o.offset_yield, jc.hardening(0.002)), "Pa"});
-        rows.push_back({"E_initial_" + name, o.E_init, E, pd::io::relative_error(o.E_init, E), "Pa"});
-        rows.push_back({"ep_corner_over_centre_at_first_yield_" + name, o.corner_ratio, NAN, NAN, "-"});
-        rows.push_back({"sigma_eng_last_" + name, o.sigma_eng, NAN, NAN, "Pa"});
-        rows.push_back({"first_yield_step_centre_" + name, double(o.yield_centre), NAN, NAN, "-"});
-        rows.push_back({"first_yield_step_corner_" + name, double(o.yield_corner), NAN, NAN, "-"});
-        rows.push_back({"steps_completed_" + name, double(o.steps_done), double(steps), NAN, "-"});
-        rows.push_back({"wall_" + name, o.wall_s, NAN, NAN, "s"});
-        check(o.steps_done == steps, name + ": all " + std::to_string(steps) + " load steps converged");
+        run.summary({{"sigma_eq_centre_" + name, o.sigma_eq, ref, pd::io::relative_error(o.sigma_eq, ref), "Pa"},
+                     {"ep_centre_" + name, o.ep, NAN, NAN, "-"},
+                     {"offset_yield_" + name, o.offset_yield, A, pd::io::relative_error(o.offset_yield, A), "Pa"},
+                     {"offset_yield_vs_curve_at_0.002_" + name, o.offset_yield, jc.hardening(0.002),
+                      pd::io::relative_error(o.offset_yield, jc.hardening(0.002)), "Pa"},
+                     {"E_initial_" + name, o.E_init, E, pd::io::relative_error(o.E_init, E), "Pa"},
+                     {"ep_corner_over_centre_at_first_yield_" + name, o.corner_ratio, NAN, NAN, "-"},
+                     {"sigma_eng_last_" + name, o.sigma_eng, NAN, NAN, "Pa"},
+                     {"first_yield_step_centre_" + name, double(o.yield_centre), NAN, NAN, "-"},
+                     {"first_yield_step_corner_" + name, double(o.yield_corner), NAN, NAN, "-"},
+                     {"steps_completed_" + name, double(o.steps_done), double(steps), NAN, "-"},
+                     {"wall_" + name, o.wall_s, NAN, NAN, "s"}});
+        run.check(o.steps_done == steps, name + ": all " + std::to_string(steps) + " load steps converged");
         // The centre yields in the run: the return then puts sigma_eff on the curve to the Newton round-off.
-        check(o.ep > 0 && pd::io::relative_error(o.sigma_eq, ref) < 1e-9, name + ": centre on the hardening curve (return consistency)");
+        run.check(o.ep > 0 && pd::io::relative_error(o.sigma_eq, ref) < 1e-9, name + ": centre on the hardening curve (return consistency)");
         // Correspondence: uniform uniaxial stress in the gauge, so the offset yield is A + B 0.002^n
         // (+8 MPa = 1.5 % for Table 5.1) up to the gauge's plastic strain not being exactly 0.2 %
         // and the area change: 3 % allowed.
         if (name == "correspondence")
-            check(pd::io::relative_error(o.offset_yield, jc.hardening(0.002)) < 0.03, name + ": 0.2 % offset yield at A + B 0.002^n");
+            run.check(pd::io::relative_error(o.offset_yield, jc.hardening(0.002)) < 0.03, name + ": 0.2 % offset yield at A + B 0.002^n");
         if (name == "lps")  // source (Fig. 5.3): the section corners yield first (more ep than the centre)
-            check(o.corner_ratio > 1, name + ": corner-first yield in the mid-section");
+            run.check(o.corner_ratio > 1, name + ": corner-first yield in the mid-section");
     }
-    pd::io::write_summary(out / "summary.csv", rows);
-    std::printf("%s\n", check.passed() ? "PASS" : "FAIL");
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    return run.finish("%zu models, %d load steps to strain %.3g", models.size(), steps, strain);
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("jc_bar_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("jc_bar_3d", [&] { return run_case(argc, argv); }); }

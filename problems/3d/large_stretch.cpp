@@ -21,9 +21,8 @@
 // Writes: curves.csv (one row per model and step), summary.csv, params.csv.
 #include "pd/bc/grips.hpp"
 #include "pd/io/bar_options.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/load_step.hpp"
 #include "pd/models/lps.hpp"
@@ -36,7 +35,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <map>
 
 using large_stretch::Bar;
@@ -46,10 +44,12 @@ using large_stretch::Run;
 using large_stretch::stretch;
 using pd::ref::UniaxialLaw;
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case), echoed and saved.
-    pd::io::Options opt("large_stretch_3d", "V2 bar to 100 % nominal strain (spec/000b V5): stress-strain per PD model.");
+    pd::io::Case run("large_stretch_3d", "V2 bar to 100 % nominal strain (spec/000b V5): stress-strain per PD model.",
+                     "reports/3d/large_stretch");
+    pd::io::Options& opt = run.opt;
     const pd::io::BarOptions bar_opt = pd::io::add_bar_options(opt, 1.0, "final end displacement / length (source: 1)");
     auto& [E, nu, L, W, T, strain, m, grip] = bar_opt;
     int& n = opt.add_int("n", 4, "nodes through the thickness (source: 5; standard 4 for run time; quick: 3)");
@@ -60,22 +60,18 @@ static int run(int argc, char** argv)
     double& tol = opt.add("tol", 1e-6, "ADR relative residual tolerance per load step");
     double& safety = opt.add("safety", 1.2, "ADR density safety factor over the reference-tangent bound");
     int& max_iter = opt.add_int("max-iter", 5000, "ADR iteration limit per load step (converged steps need < 600)");
-    pd::io::add_standard(opt, "reports/3d/large_stretch");
     for (const char* o : {"tol", "safety"}) opt.require_positive(o);
     opt.require_at_least("n", 2);
     opt.require_at_least("steps", 1);
     opt.require_at_least("C-hg", 0);
     opt.require_at_least("max-iter", 1);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     bar_opt.validate(opt);
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     if (quick && !opt.given("n")) n = 2;
     if (quick && !opt.given("steps")) steps = 10;
     if (quick && !opt.given("strain")) strain = 0.5;  // n = 2: PALS turns its two-layer section inside out at 0.7
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    run.start();
 
     // 2. Discretisation: bar plus grips; gauge layers at 0.5 l2 -+ delta, the mid-length layers.
     Bar s{L, W, T, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * m * T / n), {}};
@@ -124,19 +120,13 @@ static int run(int argc, char** argv)
         runs[name] = r;
     }
 
-    // 6. CSVs, table at selected strains, verdict.
-    pd::io::CsvWriter csv(out / "curves.csv", {"model", "step", "strain_nominal", "P_Pa", "lambda_gauge", "mu_y", "mu_z",
+    // 6. CSVs, table at selected strains, checks, verdict.
+    pd::io::CsvWriter csv(run.file("curves.csv"), {"model", "step", "strain_nominal", "P_Pa", "lambda_gauge", "mu_y", "mu_z",
                                                "sigma_true_Pa", "eps_eq", "sigma_vm_Pa", "P_closed_Pa", "sigma_closed_Pa",
                                                "eps_eq_closed", "rel_dev_P", "iterations", "residual"});
-    std::vector<pd::io::SummaryRow> rows;
     std::printf("\n%-19s %7s %8s %12s %12s %9s %9s %8s %12s %12s %6s\n", "model", "strain", "lambda", "P_Pa", "P_closed_Pa",
                 "rel_dev", "shape_dev", "eps_eq", "sigma_vm_Pa", "sig_closed", "iters");
-    bool ok = true;
-    std::string why;
     for (const auto& [name, r] : runs) {
-        const bool required = name != "correspondence-svk";  // SVK stalls beyond ~50 % (report): curve up to there
-        ok = ok && (r.converged || !required) && !r.curve.empty();
-        if (!r.converged && required) why += name + " not converged; ";
         if (r.curve.empty()) continue;
         const Point& p1 = r.curve.front();
         const double bias = p1.P / p1.P_ref;  // small-strain ratio (surface effect of the thin bar)
@@ -153,37 +143,37 @@ static int run(int argc, char** argv)
                             p.P, p.P_ref, dev, shape, p.eps_eq, std::abs(p.sigma), p.sigma_ref, p.iterations);
         }
         const Point& pe = r.curve.back();
-        rows.push_back({"P_end_" + name, pe.P, pe.P_ref, pd::io::relative_error(pe.P, pe.P_ref), "Pa"});
-        rows.push_back({"shape_end_" + name, pe.P / pe.P_ref / bias, 1.0, std::abs(pe.P / pe.P_ref / bias - 1), "-"});
-        rows.push_back({"wall_" + name, r.wall_s, NAN, NAN, "s"});
-        rows.push_back({"iterations_" + name, static_cast<double>(iters), NAN, NAN, "-"});
+        run.summary({{"P_end_" + name, pe.P, pe.P_ref, pd::io::relative_error(pe.P, pe.P_ref), "Pa"},
+                     {"shape_end_" + name, pe.P / pe.P_ref / bias, 1.0, std::abs(pe.P / pe.P_ref / bias - 1), "-"},
+                     {"wall_" + name, r.wall_s, NAN, NAN, "s"},
+                     {"iterations_" + name, static_cast<double>(iters), NAN, NAN, "-"}});
     }
-    pd::io::write_summary(out / "summary.csv", rows);
     // --check (reasons in reports/3d/large_stretch.md): every step converged (SVK: the steps up to
     // its first failure); the secant slope of the Flanagan-Taylor curve decreases; correspondence (FT, SVK) within 1 % of its closed form at
     // every step; PMB, LPS, PALS follow the shape of their continuum curve within 15 %.
+    for (const auto& [name, r] : runs) {
+        const bool required = name != "correspondence-svk";  // SVK stalls beyond ~50 % (report): curve up to there
+        run.check((r.converged || !required) && !r.curve.empty(),
+                  name + (required ? ": every load step converged" : ": load steps converged up to its first failure (at least one)"));
+    }
     if (runs.count("correspondence") && runs["correspondence"].curve.size() >= 3) {
         const auto& c = runs["correspondence"].curve;
         const std::size_t h = c.size() / 2;
         const double s1 = c[h - 1].P / c[h - 1].strain, s2 = (c.back().P - c[h - 1].P) / (c.back().strain - c[h - 1].strain);
-        if (!(s2 < s1)) ok = false, why += "Flanagan-Taylor slope not decreasing; ";
+        run.check(s2 < s1, "correspondence: Flanagan-Taylor secant slope decreasing");
     }
     for (const auto& [name, r] : runs) {
         const bool corr = name.rfind("correspondence", 0) == 0;
+        bool follows = true;
         for (const Point& p : r.curve) {
             const double dev = corr ? p.P / p.P_ref - 1 : p.P / p.P_ref / (r.curve.front().P / r.curve.front().P_ref) - 1;
-            if (!(std::abs(dev) <= (corr ? 0.01 : 0.15))) {
-                ok = false;
-                why += name + (corr ? " off its closed form; " : " off the shape of its closed form; ");
-                break;
-            }
+            follows = follows && std::abs(dev) <= (corr ? 0.01 : 0.15);
         }
+        run.check(follows, name + (corr ? ": within 1 % of its closed form at every step" : ": within 15 % of the shape of its closed form at every step"));
     }
-    if (runs.count("correspondence-svk") && !runs["correspondence-svk"].converged)
-        why += "SVK stopped at " + runs["correspondence-svk"].message + "; ";
-    std::printf("%s: %s%s\n", ok ? "PASS" : "FAIL", why.c_str(),
-                ok ? "required load steps converged, correspondence-FT slope decreasing, curves follow their closed forms" : "");
-    return opt.get_flag("check") && !ok ? 1 : 0;
+    const std::string svk = runs.count("correspondence-svk") && !runs["correspondence-svk"].converged
+                                ? "; SVK stopped at " + runs["correspondence-svk"].message : "";
+    return run.finish("%zu models to nominal strain %.3g in %d steps%s", runs.size(), strain, steps, svk.c_str());
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("large_stretch_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("large_stretch_3d", [&] { return run_case(argc, argv); }); }

@@ -17,9 +17,8 @@
 // Run: model_cost_3d [--n 8] [--steps 200] [--repeats 3] [--threads 1] [--node-matrices] [--quick] [--check] [--out DIR]
 // Writes: summary.csv, runs.csv (per run), timings.csv (per block), params.csv.
 #include "pd/bc/grips.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
@@ -31,7 +30,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -81,10 +79,11 @@ Runner make_runner(const Scene& sc, Make&& make)
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI), echoed and saved.
-    pd::io::Options opt("model_cost_3d", "Explicit T2 bar: run time of LPS, LPS+SCF, PALS, correspondence over PMB's.");
+    pd::io::Case run("model_cost_3d", "Explicit T2 bar: run time of LPS, LPS+SCF, PALS, correspondence over PMB's.", "reports/3d/model_cost");
+    pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 100e9, "Young's modulus", "Pa");
     double& nu = opt.add("nu", 0.33, "Poisson's ratio");
     double& rho = opt.add("rho", 7800, "density (not given by the source: steel)", "kg/m^3");
@@ -100,21 +99,17 @@ static int run(int argc, char** argv)
     int& steps = opt.add_int("steps", 200, "velocity Verlet steps per run (quick: 20)");
     int& repeats = opt.add_int("repeats", 3, "repetitions of the whole interleaved set (quick: 2)");
     int& block = opt.add_int("block", 10, "steps per model before the next model's turn (quick: 5)");
-    pd::io::add_standard(opt, "reports/3d/model_cost");
     for (const char* o : {"E", "rho", "length", "width", "thickness", "strain", "dt-factor"}) opt.require_positive(o);
     for (const char* o : {"n", "m", "steps", "repeats", "block"}) opt.require_at_least(o, 1);
     opt.require_at_least("C-hg", 0);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     if (quick && !opt.given("n")) n = 2;
     if (quick && !opt.given("steps")) steps = 20;
     if (quick && !opt.given("repeats")) repeats = 2;
     if (quick && !opt.given("block")) block = 5;
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    run.start();
 
     // 2. Discretisation: bar plus clamp zones ceil(2 delta/dx) cells long at both ends (outside).
     const double dx = H / n, delta = m * dx;
@@ -154,8 +149,8 @@ static int run(int argc, char** argv)
     std::vector<double> best_setup(M, inf), best_step(M, inf);
     std::vector<std::vector<double>> block_ratio(M);  // t_model / t_pmb per block [-]
     bool tips_ok = true;
-    pd::io::CsvWriter blocks(out / "timings.csv", {"repeat", "block", "model", "steps", "wall_s"});
-    pd::io::CsvWriter runs(out / "runs.csv", {"repeat", "model", "setup_s", "step_s", "bond_updates_per_s", "tip_u_m"});
+    pd::io::CsvWriter blocks(run.file("timings.csv"), {"repeat", "block", "model", "steps", "wall_s"});
+    pd::io::CsvWriter runs(run.file("runs.csv"), {"repeat", "model", "setup_s", "step_s", "bond_updates_per_s", "tip_u_m"});
     for (int r = 0; r < repeats; ++r) {
         std::vector<Runner> runner;
         for (std::size_t k = 0; k < M; ++k) runner.push_back(make(k));
@@ -182,7 +177,6 @@ static int run(int argc, char** argv)
     // 6. Ratios against PMB (median of the block ratios; best-of-R totals beside), summary, table, verdict.
     const std::vector<double> source{1, 2, std::nan(""), 8, 3};   // spec/000b sec. 5.3 (LPS+SCF not given)
     const std::vector<double> target{1, 2, 2, 3, 3};               // issue 3 (LPS+SCF held to LPS's)
-    std::vector<pd::io::SummaryRow> rows;
     bool ratios_ok = true, targets_met = true;
     std::printf("\n%-15s %9s %9s %11s %7s %13s %10s %6s %6s  %s\n", "model", "setup_s", "best_s", "bond_upd/s", "ratio",
                 "[q25, q75]", "ratio_best", "source", "target", "issue");
@@ -195,18 +189,19 @@ static int run(int argc, char** argv)
                     best_step[k], double(bonds.size()) * steps / best_step[k], ratio, pd::io::quantile(block_ratio[k], 0.25),
                     pd::io::quantile(block_ratio[k], 0.75), ratio_best, source[k], target[k],
                     k == 0 ? "-" : meets ? "met" : "NOT met");
-        if (k > 0) rows.push_back({"cost_ratio_" + names[k], ratio, source[k], pd::io::relative_error(ratio, source[k]), "-"});
+        if (k > 0) run.summary({"cost_ratio_" + names[k], ratio, source[k], pd::io::relative_error(ratio, source[k]), "-"});
     }
-    rows.push_back({"wall_pmb", best_step[0], std::nan(""), std::nan(""), "s"});
-    rows.push_back({"bonds", double(bonds.size()), std::nan(""), std::nan(""), "-"});
-    rows.push_back({"bond_updates_per_s_pmb", double(bonds.size()) * steps / best_step[0], std::nan(""), std::nan(""), "1/s"});
-    pd::io::write_summary(out / "summary.csv", rows);
+    run.summary({{"wall_pmb", best_step[0], std::nan(""), std::nan(""), "s"},
+                 {"bonds", double(bonds.size()), std::nan(""), std::nan(""), "-"},
+                 {"bond_updates_per_s_pmb", double(bonds.size()) * steps / best_step[0], std::nan(""), std::nan(""), "1/s"}});
 
-    const bool ok = ratios_ok && tips_ok;  // all runs finite and guarded (else exit 3 before here)
-    std::printf("\n%s: %zu nodes, %zu bonds, %d steps; all runs stable; issue targets (LPS <= 2, LPS+SCF <= 2, PALS <= 3, "
-                "correspondence <= 3 x PMB) %s; PMB %.3g s\n", ok ? "PASS" : "FAIL", body.size(), bonds.size(), steps,
-                targets_met ? "all met" : "NOT all met", best_step[0]);
-    return opt.get_flag("check") && !ok ? 1 : 0;
+    // All runs finite and guarded (else exit 3 before here).
+    std::printf("\n");
+    run.check(ratios_ok, "every cost ratio (median and best-of-R) finite and positive");
+    run.check(tips_ok, "every run's pulled end at u_end after the ramp (to 1e-9)");
+    return run.finish("%zu nodes, %zu bonds, %d steps; all runs stable; issue targets (LPS <= 2, LPS+SCF <= 2, PALS <= 3, "
+                      "correspondence <= 3 x PMB) %s; PMB %.3g s", body.size(), bonds.size(), steps,
+                      targets_met ? "all met" : "NOT all met", best_step[0]);
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("model_cost_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("model_cost_3d", [&] { return run_case(argc, argv); }); }

@@ -5,7 +5,7 @@
 // (ASSUMED: none in the source), delta 0.75 mm (default 1.5 mm; the published grid is in problems/cases.txt),
 // m 3.05, correspondence (linear law; Flanagan-Taylor inside the viscoelastic wrapper) with hourglass 0.02.
 // Grips: ceil(delta/dx) layers outside y = 0 and 10 mm (000a sec. 3.6; --grips inside: the plate's own end
-// layers, as until 2026-11-25), clamped, ramped to strain 0.0008 over --t-ramp (default: the whole 500 us;
+// layers), clamped, ramped to strain 0.0008 over --t-ramp (default: the whole 500 us;
 // the source is ambiguous); no-fail in the grips and within --no-fail of each end. dt = 0.5 x Silling-Askari.
 // Damage: stretch s0 = MO 3D (000c eq. 8.11), micropotential w_C = 4 J_C/(pi delta^4) (8.15),
 // numerical viscosity gamma_b = eta^2 - 1, tau_b = 1/(2 pi eta c_S/dx) (8.29).
@@ -14,36 +14,116 @@
 // spreading); wall time per run. Compared: Tables 8.1-8.3 (trends only: notch width and rho unknown).
 // Run: notched_plate_3d [--runs none,stretch,micro,visco] [--etas 1.01,1.1,3] [--E --nu --rho --Gc --delta
 //   --m --C-hg --strain --t-ramp --t-end --no-fail --dt-factor --sample] [--quick] [--check] [--out DIR]
-// One run (bonds with the notch, damage rule, grips, integration, measurements): notched_plate_run.hpp.
 // Writes: history_<run>.csv (t, stress, broken bonds, tip), runs.csv, summary.csv, params.csv.
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/damage/precrack.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/options.hpp"
+#include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"
 #include "pd/models/viscoelastic_numerical.hpp"
 #include "pd/time/critical_step.hpp"
-
-#include "notched_plate_run.hpp"
+#include "pd/time/verlet.hpp"
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
 
 namespace {
 
-using notched_plate::C3, notched_plate::Result, notched_plate::Setup, notched_plate::run_case;
+using C3 = pd::Correspondence<3>;
 
-int run(int argc, char** argv)
+struct Setup {
+    pd::Body<3> body;
+    double L = 0, thick = 0, a = 0, y_notch = 0, delta = 0, dx = 0, rho = 0, strain = 0, t_ramp = 0, t_end = 0, dt = 0;
+    double no_fail = 0, gauge = 0;  // no-fail band, pulled length between the grips [m]
+    long sample = 50;
+    pd::NodeSet bottom, top, protect;
+    pd::Elastic mat;
+    double Gc = 0, C_hg = 0;
+};
+
+struct Result {
+    std::string name;
+    double t_start = NAN, t_end = NAN, wall = 0, peak_stress = 0;  // [s], [s], [s], [Pa]
+    long broken_at_end = 0, broken_final = 0;
+    bool unstable = false;
+};
+
+// One run: bonds with the notch, the model from make(bonds), the damage rule with the no-fail band, the
+// clamped grips ramped apart, velocity Verlet to t_end; the measurements of the header, history_<name>.csv.
+template <class Make>
+Result run_plate(const Setup& s, const std::string& name, const std::string& damage, Make make, const std::filesystem::path& out,
+                 double dt_divisor = 1)
+{
+    Result r{name};
+    const pd::io::Timer timer;
+    pd::Bonds bonds = pd::build_bonds(s.body, s.delta, {.keep = pd::cut_by_rectangle(s.body, {{-s.dx, s.y_notch, -s.dx}},
+                                                                                      {{s.a + s.dx, 0, 0}}, {{0, 0, s.thick + 2 * s.dx}})});
+    bonds.enable_damage();
+    const std::vector<double> phi0 = pd::point_damage(bonds);
+    auto holder = make(bonds);
+    auto& model = *holder;
+    using Model = std::remove_reference_t<decltype(model)>;
+    pd::Explicit<3, Model> ex(s.body, bonds, model, s.rho);
+    pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta), .s0_bond = {}, .no_fail = {}};
+    pd::CriticalMicropotential<3> mp;
+    mp.w_c = pd::w_critical(s.Gc, s.delta);
+    cs.protect(s.protect, s.body.size()), mp.protect(s.protect, s.body.size());
+    if (damage == "stretch") ex.damage = &cs;
+    if (damage == "micro") ex.micropotential = &mp;
+    const double stretch = 0.5 * s.strain * s.gauge;  // grip displacement at the end of the ramp [m]
+    for (int d = 0; d < 3; ++d) {
+        const double g = d == 1 ? stretch : 0;
+        ex.boundary.prescribe({pd::Prescribed::Kind::displacement, s.bottom, d, pd::TimeFunction::ramp(-g, s.t_ramp)});
+        ex.boundary.prescribe({pd::Prescribed::Kind::displacement, s.top, d, pd::TimeFunction::ramp(g, s.t_ramp)});
+    }
+    ex.start();
+    pd::io::CsvWriter csv(out / ("history_" + name + ".csv"), {"t_s", "stress_Pa", "broken_bonds", "tip_x_m"});
+    const double dt = s.dt / dt_divisor;
+    const long steps = std::lround(s.t_end / dt);
+    try {
+        for (long n = 1; n <= steps; ++n) {
+            ex.step(dt);
+            if (std::isnan(r.t_start) && ex.broken_bonds > 0) r.t_start = ex.t;
+            if (n % (s.sample * static_cast<long>(dt_divisor)) != 0 && n != steps) continue;
+            double reaction = 0;  // force on the top grip from the plate [N]
+            for (int i : s.top) reaction -= ex.internal_force_density().c[1][i] * s.body.volume[i];
+            const double stress = reaction / (s.L * s.thick);
+            r.peak_stress = std::max(r.peak_stress, stress);
+            double tip = 0;
+            if (ex.broken_bonds > 0) {
+                const std::vector<double> phi = pd::point_damage(bonds);
+                for (std::size_t i = 0; i < phi.size(); ++i)
+                    if (phi[i] - phi0[i] >= 0.35) tip = std::max(tip, s.body.x.c[0][i]);
+            }
+            if (std::isnan(r.t_end) && tip > s.L - 1.5 * s.dx) { r.t_end = ex.t; r.broken_at_end = ex.broken_bonds; }
+            csv.row({ex.t, stress, static_cast<double>(ex.broken_bonds), tip});
+        }
+    } catch (const pd::Unstable& e) {
+        std::printf("  %s: %s\n", name.c_str(), e.what());
+        r.unstable = true;
+    }
+    r.broken_final = ex.broken_bonds;
+    r.wall = timer.seconds();
+    std::printf("  %-12s start %7.2f us, end %7.2f us, propagation %6.2f us, peak %.4g MPa, broken %ld (at end %ld), "
+                "detached %ld, %.1f s\n", name.c_str(), r.t_start * 1e6, r.t_end * 1e6, (r.t_end - r.t_start) * 1e6,
+                r.peak_stress * 1e-6, r.broken_final, r.broken_at_end, mp.detached_nodes + ex.detached_nodes, r.wall);
+    return r;
+}
+
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: the thesis' case, rho assumed), echoed and saved.
-    pd::io::Options opt("notched_plate_3d", "Notched Si3N4 plate: stretch vs micropotential (spec/000c V10).");
+    pd::io::Case run("notched_plate_3d", "Notched Si3N4 plate: stretch vs micropotential (spec/000c V10).", "reports/3d/notched_plate");
+    pd::io::Options& opt = run.opt;
     opt.add_string("runs", "none,stretch,micro,visco", "runs: comma list of none, stretch, micro, visco");
     opt.add_string("etas", "1.01,1.1,3", "numerical-viscosity coefficients of the visco runs (> 1)");
     opt.add("E", 310e9, "Young's modulus", "Pa");
@@ -62,22 +142,19 @@ int run(int argc, char** argv)
     opt.add_string("grips", "outside", "grip layers added outside the plate, or the plate's own end layers", {"outside", "inside"});
     opt.add("dt-factor", 0.5, "safety factor on the Silling-Askari step", "-");
     opt.add_int("sample", 50, "steps between damage samples");
-    pd::io::add_standard(opt, "reports/3d/notched_plate");
     for (const char* p : {"E", "rho", "Gc", "delta", "L", "thickness", "strain", "t-ramp", "t-end", "dt-factor"}) opt.require_positive(p);
     opt.require_range("nu", -1, 0.5, false, false);
     for (const char* p : {"m", "sample"}) opt.require_at_least(p, 1);
     for (const char* p : {"C-hg", "no-fail"}) opt.require_at_least(p, 0);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     const std::vector<double> etas = pd::io::list_option(opt, "etas", pd::io::ListValues::positive);
     for (double e : etas)
         if (!(e > 1)) opt.fail("--etas values must be > 1");
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     const std::vector<std::string> runs = quick && !opt.given("runs") ? std::vector<std::string>{"stretch", "micro"}
                                                                      : pd::io::list_choices(opt, "runs", {"none", "stretch", "micro", "visco"});
-    opt.echo(std::cout);
-    pd::set_threads(opt.get_int("threads"));
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
+    run.start();
+    const std::filesystem::path& out = run.out();
 
     // 2. Discretisation (default delta 1.5 mm: 20 x 20 x 2 nodes; --quick: ramp 150 us, end 120 us); grips
     //    outside [0, Lb] in y (Lb = L in whole cells): y < 0 and y > Lb, or inside (--grips inside).
@@ -116,7 +193,7 @@ int run(int argc, char** argv)
     auto elastic = [&](const pd::Bonds& b) { return std::make_unique<C3>(C3::Params{s.mat, C3::Law::linear, s.C_hg}, s.body, b); };
     std::vector<Result> results;
     for (const std::string& run_name : runs) {
-        if (run_name != "visco") { results.push_back(run_case(s, run_name, run_name, elastic, out)); continue; }
+        if (run_name != "visco") { results.push_back(run_plate(s, run_name, run_name, elastic, out)); continue; }
         for (double eta : etas) {
             const pd::MaxwellShear vp = pd::numerical_viscosity(s.mat.G, s.rho, s.dx, eta);
             std::unique_ptr<C3> inner;
@@ -129,15 +206,13 @@ int run(int argc, char** argv)
             std::snprintf(nm, sizeof nm, "micro_eta%g", eta);
             // The branch is relaxed within a step (tau_b < dt), but a step increment sees the stiffness
             // (1 + gamma_b) G = eta^2 G: dt is divided by eta (the wave-speed ratio), else eta = 3 is unstable.
-            results.push_back(run_case(s, nm, "micro", visco, out, eta));
+            results.push_back(run_plate(s, nm, "micro", visco, out, eta));
         }
     }
 
     // 6. Tables 8.1-8.3 (correspondence rows), trends, CSVs and verdict.
-    pd::io::Checks check;
-    std::vector<pd::io::SummaryRow> summary;
-    pd::io::CsvWriter csv(out + "/runs.csv", {"run", "t_start_s", "t_end_s", "propagation_s", "peak_stress_Pa", "broken_at_end",
-                                              "broken_final", "unstable", "wall_s"});
+    pd::io::CsvWriter csv(run.file("runs.csv"), {"run", "t_start_s", "t_end_s", "propagation_s", "peak_stress_Pa", "broken_at_end",
+                                                 "broken_final", "unstable", "wall_s"});
     auto find = [&](const std::string& n) -> const Result* { for (const auto& r : results) if (r.name == n) return &r; return nullptr; };
     struct Published { const char* name; double start, end, wall; };  // Tables 8.1-8.3, correspondence [us], [s]
     const Published pub[] = {{"none", NAN, NAN, 671}, {"stretch", 102, 122, 720}, {"micro", 152, 156, 1164},
@@ -147,28 +222,25 @@ int run(int argc, char** argv)
                  static_cast<double>(r.broken_final), r.unstable ? 1.0 : 0.0, r.wall});
         for (const auto& p : pub)
             if (r.name == p.name && !std::isnan(p.start)) {
-                summary.push_back({r.name + "_t_start_s", r.t_start, p.start * 1e-6, pd::io::relative_error(r.t_start, p.start * 1e-6), "s"});
-                summary.push_back({r.name + "_t_end_s", r.t_end, p.end * 1e-6, pd::io::relative_error(r.t_end, p.end * 1e-6), "s"});
+                run.summary({r.name + "_t_start_s", r.t_start, p.start * 1e-6, pd::io::relative_error(r.t_start, p.start * 1e-6), "s"});
+                run.summary({r.name + "_t_end_s", r.t_end, p.end * 1e-6, pd::io::relative_error(r.t_end, p.end * 1e-6), "s"});
             }
-        summary.push_back({r.name + "_wall_s", r.wall, NAN, NAN, "s"});
-        check(!r.unstable, r.name + ": run stays stable");
-        if (r.name != "none") check(!std::isnan(r.t_end), r.name + ": the crack crosses the plate");
+        run.summary({r.name + "_wall_s", r.wall, NAN, NAN, "s"});
+        run.check(!r.unstable, r.name + ": run stays stable");
+        if (r.name != "none") run.check(!std::isnan(r.t_end), r.name + ": the crack crosses the plate");
     }
     const Result *st = find("stretch"), *mi = find("micro");
     if (st && mi) {
-        summary.push_back({"wall_ratio_micro_over_stretch", mi->wall / st->wall, 1164.0 / 720, NAN, "-"});
+        run.summary({"wall_ratio_micro_over_stretch", mi->wall / st->wall, 1164.0 / 720, NAN, "-"});
         std::printf("wall ratio micropotential / stretch: %.3f (source 1.62; issue target <= 1.3)\n", mi->wall / st->wall);
         // Trend of Table 8.1 (correspondence): the micropotential crack propagates faster than the stretch crack.
-        check(mi->t_end - mi->t_start < st->t_end - st->t_start, "micropotential propagates faster than stretch (Table 8.1)");
+        run.check(mi->t_end - mi->t_start < st->t_end - st->t_start, "micropotential propagates faster than stretch (Table 8.1)");
     }
     if (const Result* none = find("none"); none && st)
-        summary.push_back({"wall_ratio_stretch_over_none", st->wall / none->wall, 720.0 / 671, NAN, "-"});
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s (trends of Tables 8.1-8.2; times are qualitative: notch width and rho are not in the source)\n",
-                check.passed() ? "PASS" : "FAIL (see the checks above)");
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+        run.summary({"wall_ratio_stretch_over_none", st->wall / none->wall, 720.0 / 671, NAN, "-"});
+    return run.finish("trends of Tables 8.1-8.2; times are qualitative: notch width and rho are not in the source");
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("notched_plate_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("notched_plate_3d", [&] { return run_case(argc, argv); }); }

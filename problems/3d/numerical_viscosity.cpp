@@ -18,10 +18,8 @@
 //   [--steps-per-period 200] [--periods 4] [--quick] [--check] [--out DIR]
 // Writes: response.csv, summary.csv (with the wave-test ratios), params.csv.
 #include "pd/bond_loop.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/measure/shear_cube.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"
@@ -34,7 +32,6 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <iostream>
 #include <numbers>
 #include <utility>
 
@@ -81,10 +78,12 @@ double torsion_frequency(const pd::Body<3>& bar, pd::Bonds& bonds, Model& model,
     return crossings * pi / t_cross;
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: the thesis' Si3N4 plate), echoed and saved.
-    pd::io::Options opt("numerical_viscosity_3d", "Numerical viscosity: low/high-frequency stiffness (spec/000c V6).");
+    pd::io::Case run("numerical_viscosity_3d", "Numerical viscosity: low/high-frequency stiffness (spec/000c V6).",
+                     "reports/3d/numerical_viscosity");
+    pd::io::Options& opt = run.opt;
     opt.add("eta", 3.0, "damping coefficient eta (> 1)", "-");
     opt.add("E", 310e9, "Young's modulus", "Pa");
     opt.add("nu", 0.29, "Poisson's ratio", "-");
@@ -95,22 +94,17 @@ int run(int argc, char** argv)
     opt.add_int("n", 5, "nodes per cube side");
     opt.add_int("steps-per-period", 200, "time steps per period");
     opt.add_int("periods", 4, "periods measured after the transient");
-    pd::io::add_standard(opt, "reports/3d/numerical_viscosity");
     for (const char* p : {"E", "rho", "delta", "gamma0"}) opt.require_positive(p);
     opt.require_range("nu", -1, 0.5, false, false);
     for (auto [name, lo] : {std::pair{"m", 1}, std::pair{"n", 5}, std::pair{"steps-per-period", 8}, std::pair{"periods", 1}})
         opt.require_at_least(name, lo);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (!(opt.get("eta") > 1)) opt.fail("--eta must be > 1");
-    opt.echo(std::cout);
-    pd::set_threads(opt.get_int("threads"));
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
-    const bool quick = opt.get_flag("quick");
+    run.start();
+    const bool quick = run.quick();
     const pd::Elastic mat = pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu"));
     const double rho = opt.get("rho"), dx = opt.get("delta") / opt.get("m"), eta = opt.get("eta"), g0 = opt.get("gamma0");
     const int n = opt.get_int("n"), N = quick ? 50 : opt.get_int("steps-per-period"), periods = opt.get_int("periods");
-    pd::io::Checks check;
     const pd::io::Timer timer;
 
     // 2. Parameters (8.27-8.29) for the thesis' three eta and the chosen one.
@@ -165,13 +159,12 @@ int run(int argc, char** argv)
     };
 
     // 5. Low, peak-phase and high frequency; compare with G*/G.
-    pd::io::CsvWriter csv(out + "/response.csv", {"omega_rad_s", "omega_over_w0", "lps_stiffness", "corr_stiffness", "ref_stiffness",
+    pd::io::CsvWriter csv(run.file("response.csv"), {"omega_rad_s", "omega_over_w0", "lps_stiffness", "corr_stiffness", "ref_stiffness",
                                                   "lps_phase_deg", "corr_phase_deg", "ref_phase_deg"});
     const double disc = std::pow(2 * pi / N, 2) / 12;  // O((w dt)^2) of the integrator (problems/1d/sls_frequency.cpp)
     const double tol = 3 * disc + 10 * g0 * g0;        // plus O(gamma0^2) of the kinematics
-    std::vector<pd::io::SummaryRow> summary = {
-        {"gamma_b", vp.gamma_b, eta * eta - 1, pd::io::relative_error(vp.gamma_b, eta * eta - 1), "-"},
-        {"tau_b", vp.tau_b, NAN, NAN, "s"}};
+    run.summary({{"gamma_b", vp.gamma_b, eta * eta - 1, pd::io::relative_error(vp.gamma_b, eta * eta - 1), "-"},
+                 {"tau_b", vp.tau_b, NAN, NAN, "s"}});
     const char* names[] = {"low", "mid", "high"};
     const double freqs[] = {w0 / 100, std::sqrt(w0 * wP), 30 * wP};
     for (int q = 0; q < 3; ++q) {
@@ -184,10 +177,10 @@ int run(int argc, char** argv)
                     std::arg(r.corr) * 180 / pi, std::arg(ref) * 180 / pi);
         for (auto [model, z] : {std::pair{"lps", r.lps}, std::pair{"corr", r.corr}}) {
             const std::string key = std::string(model) + "_stiffness_" + names[q];
-            summary.push_back({key, std::abs(z), std::abs(ref), pd::io::relative_error(std::abs(z), std::abs(ref)), "-"});
-            check(std::abs(z - ref) < tol * std::abs(ref), key + ": complex stiffness = G*/G within 3 (w dt)^2/12 + 10 gamma0^2");
-            if (q == 1) summary.push_back({std::string(model) + "_phase_max_deg", std::arg(z) * 180 / pi, std::arg(ref) * 180 / pi,
-                                           pd::io::relative_error(std::arg(z), std::arg(ref)), "deg"});
+            run.summary({key, std::abs(z), std::abs(ref), pd::io::relative_error(std::abs(z), std::abs(ref)), "-"});
+            run.check(std::abs(z - ref) < tol * std::abs(ref), key + ": complex stiffness = G*/G within 3 (w dt)^2/12 + 10 gamma0^2");
+            if (q == 1) run.summary({std::string(model) + "_phase_max_deg", std::arg(z) * 180 / pi, std::arg(ref) * 180 / pi,
+                                     pd::io::relative_error(std::arg(z), std::arg(ref)), "deg"});
         }
     }
 
@@ -218,20 +211,17 @@ int run(int argc, char** argv)
         const double ref = predicted(vp.gamma_b, tau);
         const std::string key = q == 0 ? "wave_low_frequency_ratio" : "wave_high_frequency_ratio";
         std::printf("  %s (tau_b = %.4g s): w_d/w_e = %.6f, SLS root %.6f\n", key.c_str(), tau, w_d / w_e, ref / w_e);
-        summary.push_back({key, w_d / w_e, ref / w_e, pd::io::relative_error(w_d, ref), "-"});
+        run.summary({key, w_d / w_e, ref / w_e, pd::io::relative_error(w_d, ref), "-"});
         // 1e-3: the bar's surface layers have theta != 0 (K untouched by the branch) and the start excites
         // higher modes; measured 1.5e-4 (low) and 2e-5 (high) at 4 crossings.
-        check(std::abs(w_d / ref - 1) < 1e-3, key + ": torsion frequency = SLS root to 0.1 %");
+        run.check(std::abs(w_d / ref - 1) < 1e-3, key + ": torsion frequency = SLS root to 0.1 %");
     }
     const double wall = timer.seconds();
-    summary.push_back({"high_over_low_expected_eta2", std::abs(Gstar(freqs[2])) / std::abs(Gstar(freqs[0])), eta * eta, NAN, "-"});
-    summary.push_back({"wall_s", wall, NAN, NAN, "s"});
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: eta = %g, low-frequency stiffness ~ G, high-frequency ~ eta^2 G = %.4g G (%.1f s)\n",
-                check.passed() ? "PASS" : "FAIL (see the checks above)", eta, eta * eta, wall);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.summary({{"high_over_low_expected_eta2", std::abs(Gstar(freqs[2])) / std::abs(Gstar(freqs[0])), eta * eta, NAN, "-"},
+                 {"wall_s", wall, NAN, NAN, "s"}});
+    return run.finish("eta = %g, low-frequency stiffness ~ G, high-frequency ~ eta^2 G = %.4g G (%.1f s)", eta, eta * eta, wall);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("numerical_viscosity_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("numerical_viscosity_3d", [&] { return run_case(argc, argv); }); }

@@ -19,10 +19,9 @@
 //      [--grid standard|table | --sf 0.5,0.1 --dx 1e-3,1.5e-3] [--quick] [--check] [--out DIR]
 // Scene, measurement and runs in one unit system: pals_units_runs.hpp.
 // Writes: runs.csv (one row per units, model, dx, SF), summary.csv, params.csv.
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
@@ -34,7 +33,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -66,10 +64,12 @@ void with_model(const std::string& name, Scene& s, const pd::Elastic& mat, doubl
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case), echoed and saved.
-    pd::io::Options opt("pals_units_3d", "T4 explicit tension bar in SI, MMGS and CGS units (spec/000b V4): E per model.");
+    pd::io::Case run("pals_units_3d", "T4 explicit tension bar in SI, MMGS and CGS units (spec/000b V4): E per model.",
+                     "reports/3d/pals_units");
+    pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 100e9, "Young's modulus", "Pa");
     double& nu = opt.add("nu", 0.33, "Poisson's ratio (PMB uses only K)");
     double& rho = opt.add("rho", 7850, "density (not given by the source: steel)", "kg/m^3");
@@ -86,26 +86,22 @@ static int run(int argc, char** argv)
     std::string& grid = opt.add_string("grid", "standard", "(dx, SF) pairs: standard subset or Table 4.2 rows (LPS, PALS)", {"standard", "table"});
     opt.add_string("sf", "0.5", "safety factors dt/dt_crit, comma-separated (replaces --grid: all --dx x --sf)");
     opt.add_string("dx", "1e-3,0.75e-3,1.5e-3", "lattice spacings [m], comma-separated (replaces --grid: all --dx x --sf)");
-    pd::io::add_standard(opt, "reports/3d/pals_units");
     for (const char* o : {"E", "rho", "length", "width", "thickness", "strain", "t-ramp", "spread-tol"}) opt.require_positive(o);
     opt.require_at_least("m", 1), opt.require_at_least("C-hg", 0);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const std::vector<double> sfs = pd::io::list_option(opt, "sf", pd::io::ListValues::positive);
     const std::vector<double> dxs = pd::io::list_option(opt, "dx", pd::io::ListValues::positive);
     const bool product = opt.given("sf") || opt.given("dx");
     if (product && opt.given("grid")) opt.fail("option --grid cannot be combined with --sf or --dx");
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     if (quick && !opt.given("t-ramp")) t_ramp = 1e-4;
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    run.start();
 
     // The runs (dx [m], SF, models); --model overrides the models of every entry.
-    struct Case { double dx, sf; std::string models; };
+    struct Entry { double dx, sf; std::string models; };
     const std::string all = "pmb lps lps-scf pals correspondence", tab = "lps pals", cheap = "pmb lps lps-scf pals";
-    std::vector<Case> cases;
+    std::vector<Entry> cases;
     if (product) for (double dx : dxs) for (double sf : sfs) cases.push_back({dx, sf, all});
     else if (grid == "table")  // Table 4.2 in row order: (dx [mm], SF)
         for (auto [dx, sf] : std::vector<std::pair<double, double>>{{1, .5}, {1, .4}, {1, .3}, {1, .2}, {1, .1}, {.75, .5}, {.75, .4},
@@ -113,13 +109,13 @@ static int run(int argc, char** argv)
             cases.push_back({dx * 1e-3, sf, tab});
     else if (quick) cases = {{1.5e-3, 0.5, all}};
     else cases = {{1.5e-3, 0.5, all}, {1e-3, 0.5, cheap}, {0.75e-3, 0.5, tab}, {1.5e-3, 0.1, tab}};
-    if (opt.given("model")) for (Case& c : cases) c.models = which == "all" ? all : which;
+    if (opt.given("model")) for (Entry& c : cases) c.models = which == "all" ? all : which;
     std::vector<Units> systems{{"si", 1, 1, 1}, {"mmgs", 1e-3, 1e-3, 1}, {"cgs", 1e-2, 1e-3, 1}};
     if (units != "all") std::erase_if(systems, [&](const Units& u) { return u.name != units; });
 
     // 2.-5. Per (dx, SF): the lattice in every unit system; per model the quasi-static E (ADR in
     // the first unit system, once per dx) and one explicit run per unit system.
-    pd::io::CsvWriter csv(out / "runs.csv", {"units", "model", "dx_m", "delta_m", "sf", "sf_actual", "nodes", "bonds", "dt_s",
+    pd::io::CsvWriter csv(run.file("runs.csv"), {"units", "model", "dx_m", "delta_m", "sf", "sf_actual", "nodes", "bonds", "dt_s",
                                              "dt_crit_s", "steps", "stable", "unstable_step", "unstable_node", "E_end_GPa", "E_mean_GPa",
                                              "E_mean_axis_GPa", "E_qs_GPa", "E_end_rel_dev_vs_si", "E_mean_rel_dev_vs_si", "E_mean_vs_qs", "wall_s"});
     std::map<std::string, double> E_qs, headline;  // model@dx -> GPa; model_units -> E_end at dx = 1 mm, SF = 0.5 [GPa]
@@ -132,7 +128,7 @@ static int run(int argc, char** argv)
     const pd::io::Timer total;
     std::printf("\n%-5s %-15s %5s %5s %5s %7s %7s %9s %9s %9s %9s %9s %9s %6s\n", "units", "model", "dx_mm", "sf", "nodes", "bonds", "steps",
                 "E_end", "E_mean", "E_axis", "E_qs_GPa", "dev_vs_si", "mean/qs-1", "wall_s");
-    for (const Case& c : cases) {
+    for (const Entry& c : cases) {
         std::vector<Scene> scenes;
         for (const Units& u : systems) scenes.push_back(pals_units::make_scene(u, L, W, T, strain, c.dx, m, t_ramp, rho));
         std::stringstream names(c.models);
@@ -170,23 +166,25 @@ static int run(int argc, char** argv)
 
     // 6. Summary (published: Table 4.2 first row, dx = 1 mm, SF = 0.5; its PALS MMGS overflowed), verdict.
     const std::map<std::string, double> published{{"lps_mmgs", 137.4}, {"lps_cgs", 136.8}, {"pals_cgs", 99.66}};
-    std::vector<pd::io::SummaryRow> rows;
     for (const auto& [k, v] : headline) {
         const double ref = published.count(k) ? published.at(k) : NAN;
-        rows.push_back({"E_" + k, v, ref, pd::io::relative_error(v, ref), "GPa"});
+        run.summary({"E_" + k, v, ref, pd::io::relative_error(v, ref), "GPa"});
     }
-    rows.insert(rows.end(), {{"unit_spread_max", spread, NAN, NAN, "-"}, {"E_mean_vs_qs_max", worst_qs, NAN, NAN, "-"},
-                             {"wall_total", total.seconds(), NAN, NAN, "s"}});
-    pd::io::write_summary(out / "summary.csv", rows);
-    const bool ok = finite && spread <= spread_tol && worst_qs <= band;  // reasons: reports/3d/pals_units.md
-    std::printf("\n%s: %s; unit spread %.2e (bound %.0e); max |E_mean/E_qs - 1| = %.2e (%s; bound A/2 = %.2e); %.1f s\n",
-                ok ? "PASS" : "FAIL", finite ? "all runs stable and finite" : "NOT all runs stable and finite", spread, spread_tol, worst_qs,
-                worst_case.c_str(), band, total.seconds());
+    const double wall = total.seconds();
+    run.summary({{"unit_spread_max", spread, NAN, NAN, "-"}, {"E_mean_vs_qs_max", worst_qs, NAN, NAN, "-"}, {"wall_total", wall, NAN, NAN, "s"}});
+    // Reasons: reports/3d/pals_units.md.
+    std::printf("\n");
+    run.check(finite, "all runs stable and finite");
+    run.check(spread <= spread_tol, "unit spread max |E_units/E_SI - 1| <= --spread-tol " + pd::io::format_shortest(spread_tol));
+    run.check(worst_qs <= band, "max |E_mean/E_qs - 1| <= A/2, A = L/(c t_ramp) (not asserted when A > 1/8)");
+    const int status = run.finish("%s; unit spread %.2e (bound %.0e); max |E_mean/E_qs - 1| = %.2e (%s; bound A/2 = %.2e); %.1f s",
+                                  finite ? "all runs stable and finite" : "NOT all runs stable and finite", spread, spread_tol, worst_qs,
+                                  worst_case.c_str(), band, wall);
     if (!first_unstable.empty()) {  // exit 3 (guarded_main's contract), after every file is written
         std::fprintf(stderr, "pals_units_3d: first unstable run: %s\n", first_unstable.c_str());
         return 3;
     }
-    return opt.get_flag("check") && !ok ? 1 : 0;
+    return status;
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("pals_units_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("pals_units_3d", [&] { return run_case(argc, argv); }); }

@@ -20,14 +20,11 @@
 // point damage), summary.csv, params.csv.
 #include "pd/analysis/force_history.hpp"
 #include "pd/contact.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/io/vtu.hpp"
-#include "pd/models/lps.hpp"
-#include "pd/models/pmb.hpp"
+#include "pd/models/registry.hpp"
 #include "pd/random_field.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
@@ -113,10 +110,12 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
 
 }  // namespace
 
-static int run(int argc, char** argv)
+static int run_case(int argc, char** argv)
 {
     // 1. Options (SI, defaults = the source's case except dx; see header), echoed and saved.
-    pd::io::Options opt("pmma_disk_impact_3d", "Steel tip on a clamped PMMA disc with random critical stretch (spec/001_004 V7).");
+    pd::io::Case run("pmma_disk_impact_3d", "Steel tip on a clamped PMMA disc with random critical stretch (spec/001_004 V7).",
+                     "reports/3d/pmma_disk_impact", "output folder (CSV files, params.csv, damage.vtu)");
+    pd::io::Options& opt = run.opt;
     std::string& model_name = opt.add_string("model", "lps", "material model", {"lps", "pmb"});
     double& E = opt.add("E", 3.3e9, "Young's modulus", "Pa");
     double& nu = opt.add("nu", 0.35, "Poisson's ratio (pmb: 1/4 implied)");
@@ -137,22 +136,19 @@ static int run(int argc, char** argv)
     double& t_end = opt.add("t-end", 8e-3, "end time from first contact (quick 1.2e-3)", "s");
     double& window = opt.add("force-window", 0.25e-3, "window of the force means (the disc rings: raw samples are noise)", "s");
     double& dt_factor = opt.add("dt-factor", 0.5, "time step / Silling-Askari critical step (PMB bound; LPS at nu 0.35 is unstable at 0.8)");
-    pd::io::add_standard(opt, "reports/3d/pmma_disk_impact", "output folder (CSV files, params.csv, damage.vtu)");
     for (const char* o : {"E", "rho", "diameter", "thickness", "r-clamp", "delta", "dx", "mass", "tip-diameter", "v0", "penalty",
                           "s-mean", "t-end", "force-window", "dt-factor"})
         opt.require_positive(o);
     opt.require_at_least("seed", 0);
-    opt.parse(argc, argv);
+    run.parse(argc, argv);
     if (!(s_sd >= 0)) opt.fail("option --s-sd must be >= 0");
     if (!(r_clamp < 0.5 * D)) opt.fail("option --r-clamp must be below the disc radius");
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
-    const bool quick = opt.get_flag("quick");
+    const bool quick = run.quick();
     if (quick && !opt.given("dx")) dx = 2e-3;
     if (quick && !opt.given("t-end")) t_end = 1.2e-3;
-    const std::filesystem::path out = opt.get_string("out");
-    pd::set_threads(opt.get_int("threads"));
-    opt.echo(std::cout);
-    opt.save_csv(out / "params.csv");
+    run.start();
+    const std::filesystem::path& out = run.out();
 
     // 2. Discretisation: disc of cells dx centred on the z axis, bottom face z = 0.
     const double R = 0.5 * D;
@@ -176,9 +172,8 @@ static int run(int argc, char** argv)
     // 4.-5. Impactor and integration.
     const double z_top = *std::max_element(body.x.c[2].begin(), body.x.c[2].end());  // top layer of points [m]
     const Setup setup{body, clamp, rho, dt, t_end, v0, mass, 0.5 * tip_d, z_top, pd::Impactor<3>::default_penalty(E, dx, penalty), window, &cs};
-    Outcome o;
-    if (model_name == "pmb") { pd::PMB model(pmb, pd::Influence{}, bonds); o = simulate(model, bonds, setup, out); }
-    else { pd::LPS model({.material = mat, .dim = 3}, bonds); o = simulate(model, bonds, setup, out); }
+    const Outcome o = pd::with_model<pd::PMB, pd::LPS>(pd::ModelChoice{.name = model_name, .material = mat}, body, bonds,
+                                     [&](auto& model) { return simulate(model, bonds, setup, out); });
 
     // 6. Crack pattern, summary, verdict.
     pd::io::CsvWriter dmg(out / "damage.csv", {"x_m", "y_m", "z_m", "phi"});
@@ -189,7 +184,7 @@ static int run(int argc, char** argv)
     vtu.write();
     const double E0 = 0.5 * mass * v0 * v0, nan = NAN;
     using pd::io::relative_error;
-    const std::vector<pd::io::SummaryRow> rows{
+    run.summary({
         {"initial_kinetic_energy", E0, 10.49, relative_error(E0, 10.49), "J"},  // [DERIVED] spec B.5
         {"first_peak_support_force", o.peaks.F1, nan, nan, "N"},  // window means, times from first contact
         {"first_peak_time", o.peaks.t1, nan, nan, "s"},
@@ -203,26 +198,22 @@ static int run(int argc, char** argv)
         {"energy_gap_until_breakage_under_tip", o.E_gap_pre, 0, nan, "-"},
         {"damage_energy_end", o.E_damage, nan, nan, "J"},
         {"broken_bonds", static_cast<double>(o.broken), nan, nan, "-"},
-        {"wall_time", o.wall, nan, nan, "s"}};
-    pd::io::write_summary(out / "summary.csv", rows);
-    pd::io::print_summary(rows, 28);
+        {"wall_time", o.wall, nan, nan, "s"}});
+    run.print_summary(28);
 
     // Checks: the energy balance closes within 2 % of E0 while no bond breaks under the tip
     // (Verlet O(dt^2) with the stiff penalty; measured 1e-5 .. 1e-4); the tip decelerates; the
     // support carries a force; bonds break; and, on a run long enough to reach final failure
     // (not --quick), the source's shape: a first peak, a dip of at least 10 %, a second peak above
     // the first.
-    pd::io::Checks check;
-    check(o.E_gap_pre < 0.02, "energy balance closes within 2 % until bonds break under the tip");
-    check(-o.v_end < v0, "the tip decelerates");
-    check(o.F_mean_max > 0, "the support carries a reaction force");
-    check(o.broken > 0, "bonds break under the tip");
-    if (!quick) check(!std::isnan(o.peaks.F2), "support force: first peak, dip, second peak");
-    std::printf("\n%s: support force (%.3g ms means) first peak %.4g N at %.4g ms, dip %.4g N at %.4g ms, second peak %.4g N at %.4g ms;"
-                " tip %.4g -> %.4g m/s, %ld broken bonds, %.1f s\n",
-                check.passed() ? "PASS" : "FAIL", window * 1e3, o.peaks.F1, o.peaks.t1 * 1e3, o.peaks.F_dip, o.peaks.t_dip * 1e3,
-                o.peaks.F2, o.peaks.t2 * 1e3, v0, -o.v_end, o.broken, o.wall);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.check(o.E_gap_pre < 0.02, "energy balance closes within 2 % until bonds break under the tip");
+    run.check(-o.v_end < v0, "the tip decelerates");
+    run.check(o.F_mean_max > 0, "the support carries a reaction force");
+    run.check(o.broken > 0, "bonds break under the tip");
+    if (!quick) run.check(!std::isnan(o.peaks.F2), "support force: first peak, dip, second peak");
+    return run.finish("support force (%.3g ms means) first peak %.4g N at %.4g ms, dip %.4g N at %.4g ms, second peak %.4g N at %.4g ms;"
+                      " tip %.4g -> %.4g m/s, %ld broken bonds, %.1f s", window * 1e3, o.peaks.F1, o.peaks.t1 * 1e3, o.peaks.F_dip, o.peaks.t_dip * 1e3,
+                      o.peaks.F2, o.peaks.t2 * 1e3, v0, -o.v_end, o.broken, o.wall);
 }
 
-int main(int argc, char** argv) { return pd::io::guarded_main("pmma_disk_impact_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("pmma_disk_impact_3d", [&] { return run_case(argc, argv); }); }

@@ -13,11 +13,9 @@
 // Writes: convergence.csv (n, ratios, wall time), summary.csv (k_ratio rows), params.csv.
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/lattice.hpp"
 
@@ -62,26 +60,23 @@ Measured measure(double l, double a, int n, double m, double k, pd::ThermalCorre
     return {out_of_hot * scale, into_cold * scale, (long long)body.size(), (long long)bonds.size(), iterations, timer.seconds()};
 }
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (defaults: spec/000b T9-T10 with the [RECON] conventions).
-    pd::io::Options opt("prism_conductivity_3d", "Steady prism conductivity, Agwai PD with/without TCF (spec/000b T9-T10).");
+    pd::io::Case run("prism_conductivity_3d", "Steady prism conductivity, Agwai PD with/without TCF (spec/000b T9-T10).",
+                     "reports/3d/prism_conductivity");
+    pd::io::Options& opt = run.opt;
     opt.add("length", 0.03, "prism length between the held zones", "m");
     opt.add("width", 0.01, "side of the square section", "m");
     opt.add("m", 3.05, "horizon ratio delta/dx");
     opt.add("k", 50, "thermal conductivity", "W/(m K)");
     opt.add_int("n", 0, "nodes per side of the section; 0 = the study 3..21");
     opt.add_string("tcf", "off", "thermal correction of a single run", {"on", "off", "pair-mean"});
-    pd::io::add_standard(opt, "reports/3d/prism_conductivity");
     for (const char* o : {"length", "width", "k"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
     opt.require_at_least("n", 0);
-    opt.parse(argc, argv);
-    opt.echo(std::cout);
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
+    run.start(argc, argv);
     const double l = opt.get("length"), a = opt.get("width"), m = opt.get("m"), k = opt.get("k");
-    std::vector<pd::io::SummaryRow> summary;
 
     // 2. A single case.
     if (opt.get_int("n") > 0) {
@@ -90,16 +85,15 @@ int run(int argc, char** argv)
         const Measured r = measure(l, a, opt.get_int("n"), m, k, corr);
         std::printf("n = %d, tcf %s: k_meas/k = %.4f (hot side), %.4f (cold side); %d iterations, %.2f s\n",
                     opt.get_int("n"), t.c_str(), r.hot, r.cold, r.iterations, r.wall_s);
-        pd::io::write_summary(out + "/summary.csv", {{"k_ratio", r.hot, 1, std::abs(r.hot - 1), "-"}});
-        return 0;
+        run.summary({"k_ratio", r.hot, 1, std::abs(r.hot - 1), "-"});
+        return run.finish("n = %d, tcf %s: k_meas/k = %.4f", opt.get_int("n"), t.c_str(), r.hot);
     }
 
     // 3. The study: n = 3 ... 21, plain, TCF as coded (per node), TCF pair mean (conservative).
     const std::map<int, std::pair<double, double>> recon = {{3, {0.419, 1.433}}, {5, {0.626, 1.202}}, {7, {0.732, 1.159}},
         {9, {0.796, 1.137}}, {11, {0.838, 1.124}}, {15, {0.891, 1.110}}, {21, {0.934, 1.100}}};
-    const std::vector<int> ns = opt.get_flag("quick") ? std::vector<int>{3, 5, 7} : std::vector<int>{3, 5, 7, 9, 11, 15, 21};
+    const std::vector<int> ns = run.quick() ? std::vector<int>{3, 5, 7} : std::vector<int>{3, 5, 7, 9, 11, 15, 21};
     pd::io::ConvergenceTable table({}, {"ratio_plain", "ratio_tcf", "ratio_tcf_pair_mean", "recon_plain", "recon_tcf", "cold_minus_hot_plain"});
-    pd::io::Checks check;
     std::map<int, Measured> plain, tcf;
     for (int n : ns) {
         plain[n] = measure(l, a, n, m, k, pd::ThermalCorrection::none);
@@ -109,26 +103,23 @@ int run(int argc, char** argv)
         table.add({.dx_m = a / n, .delta_m = m * a / n, .m = m, .nodes = p.nodes, .bonds = p.bonds, .error = std::abs(p.hot - 1),
                    .wall_s = p.wall_s + tcf[n].wall_s + pm.wall_s,
                    .extras = {p.hot, tcf[n].hot, pm.hot, recon.at(n).first, recon.at(n).second, p.cold - p.hot}});
-        summary.push_back({"k_ratio_plain_n" + std::to_string(n), p.hot, recon.at(n).first, pd::io::relative_error(p.hot, recon.at(n).first), "-"});
-        summary.push_back({"k_ratio_tcf_n" + std::to_string(n), tcf[n].hot, recon.at(n).second, pd::io::relative_error(tcf[n].hot, recon.at(n).second), "-"});
+        run.summary({"k_ratio_plain_n" + std::to_string(n), p.hot, recon.at(n).first, pd::io::relative_error(p.hot, recon.at(n).first), "-"});
+        run.summary({"k_ratio_tcf_n" + std::to_string(n), tcf[n].hot, recon.at(n).second, pd::io::relative_error(tcf[n].hot, recon.at(n).second), "-"});
         // Heat conservation (plain and pair mean are conservative): hot outflow = cold inflow.
-        check(std::abs(p.cold - p.hot) < 1e-8 && std::abs(pm.cold - pm.hot) < 1e-8, "hot outflow = cold inflow, n = " + std::to_string(n));
+        run.check(std::abs(p.cold - p.hot) < 1e-8 && std::abs(pm.cold - pm.hot) < 1e-8, "hot outflow = cold inflow, n = " + std::to_string(n));
         // The reconstruction (spec V10) is printed to 3 digits.
-        check(std::abs(p.hot - recon.at(n).first) < 1e-3 && std::abs(tcf[n].hot - recon.at(n).second) < 1e-3,
-              "ratios = spec reconstruction (3 digits), n = " + std::to_string(n));
+        run.check(std::abs(p.hot - recon.at(n).first) < 1e-3 && std::abs(tcf[n].hot - recon.at(n).second) < 1e-3,
+                  "ratios = spec reconstruction (3 digits), n = " + std::to_string(n));
     }
     table.print(std::cout);
-    table.write_csv(out + "/convergence.csv");
+    table.write_csv(run.file("convergence.csv"));
     for (std::size_t q = 1; q < ns.size(); ++q) {
-        check(plain[ns[q]].hot > plain[ns[q - 1]].hot && plain[ns[q]].hot < 1, "plain ratio rises towards 1 from below, n = " + std::to_string(ns[q]));
-        check(tcf[ns[q]].hot > 1, "TCF ratio above 1 (source: 'from above'), n = " + std::to_string(ns[q]));
+        run.check(plain[ns[q]].hot > plain[ns[q - 1]].hot && plain[ns[q]].hot < 1, "plain ratio rises towards 1 from below, n = " + std::to_string(ns[q]));
+        run.check(tcf[ns[q]].hot > 1, "TCF ratio above 1 (source: 'from above'), n = " + std::to_string(ns[q]));
     }
-    pd::io::write_summary(out + "/summary.csv", summary);
-    std::printf("verdict: %s: n = %d: plain %.3f, TCF %.3f\n", check.passed() ? "PASS" : "FAIL (see the checks above)", ns.back(),
-                plain[ns.back()].hot, tcf[ns.back()].hot);
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    return run.finish("n = %d: plain %.3f, TCF %.3f", ns.back(), plain[ns.back()].hot, tcf[ns.back()].hot);
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("prism_conductivity_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("prism_conductivity_3d", [&] { return run_case(argc, argv); }); }

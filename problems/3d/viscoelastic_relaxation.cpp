@@ -16,10 +16,8 @@
 //   [--n 8] [--dx 1e-3] [--m 3.05] [--steps-per-tau 10] [--hold-tau 5] [--ramp-tau 2] [--quick] [--check] [--out DIR]
 // Writes: step.csv, ramp.csv (histories), summary.csv, params.csv.
 #include "pd/bond_loop.hpp"
-#include "pd/io/checks.hpp"
-#include "pd/io/csv.hpp"
+#include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/options.hpp"
 #include "pd/io/timer.hpp"
 #include "pd/measure/shear_cube.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"
@@ -30,7 +28,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 
 namespace {
 
@@ -51,10 +48,12 @@ struct Histories {
     double lps_err = 0, corr_err = 0, lps_ratio0 = 0, corr_sxy0 = 0, mean_drift = 0, theta_max = 0;  // see summary
 };
 
-int run(int argc, char** argv)
+int run_case(int argc, char** argv)
 {
     // 1. Options (no published numbers: a polymer-like default), echoed and saved.
-    pd::io::Options opt("viscoelastic_relaxation_3d", "Relaxation of the ordinary and correspondence viscoelastic models (spec/000c V4-V5).");
+    pd::io::Case run("viscoelastic_relaxation_3d", "Relaxation of the ordinary and correspondence viscoelastic models (spec/000c V4-V5).",
+                     "reports/3d/viscoelastic_relaxation");
+    pd::io::Options& opt = run.opt;
     opt.add("E", 3e9, "Young's modulus of the equilibrium (elastic) branch", "Pa");
     opt.add("nu", 0.35, "Poisson's ratio", "-");
     opt.add("gamma-b", 1, "Maxwell branch stiffness ratio G_b/G", "-");
@@ -66,7 +65,6 @@ int run(int argc, char** argv)
     opt.add_int("steps-per-tau", 10, "time steps per relaxation time");
     opt.add("hold-tau", 5, "hold duration in relaxation times", "-");
     opt.add("ramp-tau", 2, "ramp duration in relaxation times", "-");
-    pd::io::add_standard(opt, "reports/3d/viscoelastic_relaxation");
     for (const char* p : {"E", "tau", "gamma0", "dx", "hold-tau", "ramp-tau"}) opt.require_positive(p);
     opt.require_range("nu", -1, 0.5, false, false);
     opt.require_at_least("gamma-b", 0);
@@ -74,18 +72,13 @@ int run(int argc, char** argv)
     opt.require_at_least("m", 1);
     opt.require_at_least("steps-per-tau", 1);
     opt.require_range("gamma0", 0, 0.5, false, true);
-    opt.parse(argc, argv);
-    opt.echo(std::cout);
-    pd::set_threads(opt.get_int("threads"));
-    const std::string out = opt.get_string("out");
-    opt.save_csv(out + "/params.csv");
-    const bool quick = opt.get_flag("quick");
+    run.start(argc, argv);
+    const bool quick = run.quick();
     const pd::Elastic mat = pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu"));
     const double G = mat.G, gb = opt.get("gamma-b"), tau = opt.get("tau"), g0 = opt.get("gamma0");
     const int n = quick ? 6 : opt.get_int("n"), spt = opt.get_int("steps-per-tau");
     const double dx = opt.get("dx"), dt = tau / spt;
     const long hold = std::lround(opt.get("hold-tau") * spt), ramp = std::max(1L, std::lround(opt.get("ramp-tau") * spt));
-    pd::io::Checks check;
     const pd::io::Timer timer;
 
     // 2. Discretisation: cube, families; centre node and its bond of largest |e_d| under the shear.
@@ -111,8 +104,8 @@ int run(int argc, char** argv)
         pd::Correspondence<3> cm({mat, pd::Correspondence<3>::Law::flanagan_taylor}, body, bonds);
         pd::ViscoelasticCorrespondence corr(cm, {gb, tau}, body.x);
         pd::Field<3> f;
-        pd::io::CsvWriter csv(out + "/" + file, {"t_s", "gamma", "lps_td_N_per_m6", "lps_td_ref_N_per_m6", "lps_theta_centre",
-                                                 "corr_sigma_xy_Pa", "corr_sigma_xy_ref_Pa", "corr_mean_stress_Pa"});
+        pd::io::CsvWriter csv(run.file(file), {"t_s", "gamma", "lps_td_N_per_m6", "lps_td_ref_N_per_m6", "lps_theta_centre",
+                                               "corr_sigma_xy_Pa", "corr_sigma_xy_ref_Pa", "corr_mean_stress_Pa"});
         const long steps = (is_ramp ? ramp : 0) + hold;
         const double t1 = is_ramp ? ramp * dt : 0;
         double p0 = 0, edb_ref = 0;  // edb_ref: reference back extension of the ramp [m]
@@ -156,7 +149,7 @@ int run(int argc, char** argv)
 
     // 6. Summary, checks, verdict.
     const double sxy0_ref = G * g0 * (1 + gb);
-    const std::vector<pd::io::SummaryRow> summary = {
+    run.summary({
         {"lps_td0_over_elastic", step.lps_ratio0, 1 + gb, pd::io::relative_error(step.lps_ratio0, 1 + gb), "-"},
         {"lps_step_max_rel_error", step.lps_err, 0, NAN, "-"},
         {"lps_ramp_max_rel_error", rmp.lps_err, 0, NAN, "-"},
@@ -165,8 +158,7 @@ int run(int argc, char** argv)
         {"corr_step_max_rel_error", step.corr_err, 0, NAN, "-"},
         {"corr_ramp_max_rel_error", rmp.corr_err, 0, NAN, "-"},
         {"corr_mean_stress_drift_over_G_gamma0", step.mean_drift, 0, NAN, "-"},
-        {"wall_s", wall, NAN, NAN, "s"}};
-    pd::io::write_summary(out + "/summary.csv", summary);
+        {"wall_s", wall, NAN, NAN, "s"}});
     std::printf("LPS: t_d(0+)/elastic %.9f (1 + gamma_b = %g), max error step %.2e ramp %.2e, |theta| %.2e\n", step.lps_ratio0, 1 + gb,
                 step.lps_err, rmp.lps_err, step.theta_max);
     std::printf("correspondence: sigma_xy(0+) %.6g Pa (ref %.6g), max error step %.2e ramp %.2e, mean-stress drift %.2e; %.2f s\n",
@@ -176,18 +168,17 @@ int run(int argc, char** argv)
     // the model takes e_d linear in each step, the exact e_d(t) has a curvature O(gamma0) relative,
     // error O(gamma0 (dt/tau)^2) (1.7e-8 measured). Both bounded by 10 gamma0^2.
     const double geo = 10 * g0 * g0;  // 1e-5 at gamma0 = 1e-3: ten times the second-order term
-    check(std::abs(step.lps_ratio0 - (1 + gb)) < 1e-12 * (1 + gb), "LPS: t_d(0+) = (1 + gamma_b) alpha omega e_d0 to round-off");
-    check(step.lps_err < 1e-12, "LPS: step relaxation = alpha omega e_d0 (1 + gamma_b e^{-t/tau_b}) to 1e-12");
-    check(rmp.lps_err < geo, "LPS: ramp-and-hold = convolution (7.18) to 10 gamma0^2");
-    check(step.theta_max < g0 * g0, "LPS: dilatation at the centre node below gamma0^2 (zero to first order)");
-    check(step.corr_err < geo, "correspondence: step relaxation = G gamma0 (1 + gamma_b e^{-t/tau_b}) to 10 gamma0^2");
-    check(rmp.corr_err < geo, "correspondence: ramp-and-hold = convolution (7.18) to 10 gamma0^2");
-    check(step.mean_drift < 1e-12, "correspondence: mean stress unchanged by the relaxation (round-off)");
-    std::printf("verdict: %s: both models relax as the SLS closed forms (worst error %.2e)\n", check.passed() ? "PASS" : "FAIL (see the checks above)",
-                std::max({step.lps_err, rmp.lps_err, step.corr_err, rmp.corr_err}));
-    return opt.get_flag("check") && !check.passed() ? 1 : 0;
+    run.check(std::abs(step.lps_ratio0 - (1 + gb)) < 1e-12 * (1 + gb), "LPS: t_d(0+) = (1 + gamma_b) alpha omega e_d0 to round-off");
+    run.check(step.lps_err < 1e-12, "LPS: step relaxation = alpha omega e_d0 (1 + gamma_b e^{-t/tau_b}) to 1e-12");
+    run.check(rmp.lps_err < geo, "LPS: ramp-and-hold = convolution (7.18) to 10 gamma0^2");
+    run.check(step.theta_max < g0 * g0, "LPS: dilatation at the centre node below gamma0^2 (zero to first order)");
+    run.check(step.corr_err < geo, "correspondence: step relaxation = G gamma0 (1 + gamma_b e^{-t/tau_b}) to 10 gamma0^2");
+    run.check(rmp.corr_err < geo, "correspondence: ramp-and-hold = convolution (7.18) to 10 gamma0^2");
+    run.check(step.mean_drift < 1e-12, "correspondence: mean stress unchanged by the relaxation (round-off)");
+    return run.finish("both models relax as the SLS closed forms (worst error %.2e)",
+                      std::max({step.lps_err, rmp.lps_err, step.corr_err, rmp.corr_err}));
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return pd::io::guarded_main("viscoelastic_relaxation_3d", [&] { return run(argc, argv); }); }
+int main(int argc, char** argv) { return pd::io::guarded_main("viscoelastic_relaxation_3d", [&] { return run_case(argc, argv); }); }

@@ -1,0 +1,126 @@
+// pd/io/case.hpp -- the plumbing of a problem driver, in one object: options (the standard
+// --quick --check --out --threads are added by parse), echo, params.csv, threads, the --check list, summary.csv, the
+// verdict line and the exit status. A driver keeps only its physics steps:
+//
+//     pd::io::Case run("agwai_bar_1d", "1D conduction, Agwai PD vs classical.", "reports/1d/agwai_bar");
+//     double& k = run.opt.add("k", 50, "thermal conductivity", "W/(m K)");
+//     run.opt.require_positive("k");
+//     run.start(argc, argv);                      // parse, check --out, echo, params.csv, threads
+//                                                 // (or run.parse(argc, argv); quick defaults; run.start();)
+//     ...                                          // the physics, CSVs under run.out()
+//     run.check(rate > 0.9, "first-order convergence");
+//     run.summary({"t50", t, t_ref, pd::io::relative_error(t, t_ref), "s"});
+//     return run.finish("t50 %.3f s (classical %.3f s)", t, t_ref);   // summary.csv, verdict, 0 or 1
+//
+// Exit status (with guarded_main): 0 done, 1 a --check failed, 2 invalid input, 3 unstable run.
+// --out must name a folder that can be created (not empty, not an existing file): otherwise the
+// one-line message and status 2, before any computation. --threads is at most 4x the processors.
+#pragma once
+#include "pd/io/checks.hpp"
+#include "pd/io/csv.hpp"
+#include "pd/io/options.hpp"
+#include "pd/parallel.hpp"
+
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace pd::io {
+
+// The largest --threads accepted: oversubscription beyond 4 threads per processor only slows a run
+// down (and thousands of threads exhaust the system's thread limit).
+inline int max_threads()
+{
+    const unsigned procs = std::thread::hardware_concurrency();
+    return 4 * static_cast<int>(procs > 0 ? procs : 1);
+}
+
+class Case {
+public:
+    Options opt;
+
+    // out_help: the help text of --out (a driver that writes more than CSV files says so there).
+    Case(std::string program, std::string description, const std::string& default_out,
+         const std::string& out_help = "output folder (CSV files and params.csv)")
+        : opt(std::move(program), std::move(description)), default_out_(default_out), out_help_(out_help)
+    {
+    }
+
+    // Parses argv (exit 0 on --help, 2 on an input error), creates --out (exit 2 when it cannot
+    // be), echoes the options, writes params.csv and sets the OpenMP threads. A driver whose
+    // defaults depend on --quick (or on other options) calls parse(), sets them, then start().
+    void start(int argc, const char* const* argv)
+    {
+        parse(argc, argv);
+        start();
+    }
+    // The standard options are registered here, after the driver's own (so they close --help and
+    // params.csv).
+    void parse(int argc, const char* const* argv)
+    {
+        add_standard(opt, default_out_, out_help_);
+        opt.require_range("threads", 0, max_threads());
+        opt.parse(argc, argv);
+        quick_ = opt.get_flag("quick");
+        check_mode_ = opt.get_flag("check");
+    }
+    void start()
+    {
+        out_ = opt.get_string("out");
+        if (out_.empty()) opt.fail("option --out must not be empty");
+        std::error_code ec;
+        std::filesystem::create_directories(out_, ec);
+        if (ec || !std::filesystem::is_directory(out_)) opt.fail("option --out: cannot create the folder '" + out_.string() + "'");
+        opt.echo(std::cout);
+        try {
+            opt.save_csv(out_ / "params.csv");
+        } catch (const std::exception& e) {
+            opt.fail("option --out: " + std::string(e.what()));
+        }
+        set_threads(opt.get_int("threads"));
+    }
+
+    bool quick() const { return quick_; }
+    const std::filesystem::path& out() const { return out_; }
+    std::filesystem::path file(const std::string& name) const { return out_ / name; }
+
+    // One line of the --check list ("check: <what> ok|FAILED").
+    void check(bool ok, const std::string& what) { checks_(ok, what); }
+    bool passed() const { return checks_.passed(); }
+
+    // A headline result for summary.csv (written by finish, in the order given).
+    void summary(SummaryRow row) { rows_.push_back(std::move(row)); }
+    void summary(const std::vector<SummaryRow>& rows) { rows_.insert(rows_.end(), rows.begin(), rows.end()); }
+    const std::vector<SummaryRow>& summary_rows() const { return rows_; }
+    // The summary as the drivers' table on stdout.
+    void print_summary(int name_width, int digits = 6) const { pd::io::print_summary(rows_, name_width, digits); }
+
+    // Writes summary.csv (when there are rows), prints `verdict: PASS|FAIL: <headline>` and returns
+    // the exit status: 1 when --check is given and a check failed, else 0.
+    [[gnu::format(printf, 2, 3)]] int finish(const char* headline, ...)
+    {
+        if (!rows_.empty()) write_summary(out_ / "summary.csv", rows_);
+        char text[1024];
+        va_list args;
+        va_start(args, headline);
+        std::vsnprintf(text, sizeof text, headline, args);
+        va_end(args);
+        std::printf("verdict: %s: %s\n", passed() ? "PASS" : "FAIL (see the checks above)", text);
+        return exit_status();
+    }
+    int exit_status() const { return check_mode_ && !passed() ? 1 : 0; }
+
+private:
+    std::string default_out_, out_help_;
+    std::filesystem::path out_;
+    Checks checks_;
+    std::vector<SummaryRow> rows_;
+    bool quick_ = false, check_mode_ = false;
+};
+
+}  // namespace pd::io
