@@ -1,45 +1,14 @@
 // THE bond loop: internal force density f_i = sum_j t_ij(Y) Y_ij over the intact bonds of i
-// [N/m^3], for every ordinary model (force along the deformed bond Y = y_j - y_i), and
-// f_i = sum_j f_ij(Y) for non-ordinary ones (below).
-// A model supplies
-//   static constexpr bool has_point_pass;      // per-point pass before the bond pass (LPS theta)
-//   void point_pass(const Bonds&, const Field<D>& y);
-//   double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const;
-//        // |force density of bond k| / |Y| [N/m^6 / m... i.e. N/m^7]; force on i is bond_scalar * Y
-// A non-ordinary model (correspondence) declares `static constexpr bool ordinary = false;` (absent
-// means ordinary) and supplies instead
-//   Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const;
-//        // force density on i from bond k, both ends' states included, (T_i<xi> - T_j<-xi>) V_j [N/m^3]
-// The choice is made at compile time (if constexpr): ordinary models compile the same loop as before.
-// Kernels: a model may hand the bond pass a separate kernel object instead of itself, by supplying
-//   template <class Pass> void with_kernel(Pass&& pass) const;   // calls pass(kernel) exactly once
-// (or with_kernel(pass, bonds), when the kernel's set-up depends on the bonds of the pass)
-// where the kernel has the members above (ordinary flag, bond_scalar or bond_force). The model picks
-// at run time among kernels specialised at compile time, so a switched-off term costs no branch in
-// the hot loop (correspondence: hourglass control on or off), and a kernel that holds raw pointers
-// to its arrays lets the compiler keep them in registers. bond_force should be branch-free and
-// inline (no calls, no Eigen temporaries) so that the 8-bond inner loop below vectorises.
-// Node term: a kernel may also supply
-//   Vec<D> node_force(std::size_t i) const;   // added once to the lane sum of node i [N/m^3]
-// for a part of the force that factors out of the family sum (correspondence: the i-end term
-// P_i K_i^-1 sum_j omega xi V_j, computed once per node instead of once per bond).
-// Family kernel: a kernel may instead supply
-//   template <bool Damaged> Vec<D> family_force(std::size_t i, const Bonds&, const Field<D>& y) const;
-// which returns the whole f_i (node term included) and may vectorise its own way, but must add
-// bond begin(i) + l + 8 m into partial sum l and reduce as LaneSum does, so that the result does
-// not depend on the threads (correspondence: the partner matrices read within the bond, 3D AVX2).
-// Chunk kernels: a kernel may also supply
-//   const StencilRuns* chunks(const Bonds&) const;   // null when it has none for these bonds
-// and, for chunks of W nodes with translated families (stencil_runs.hpp, chunk_simd.hpp), either
-//   vchunk chunk_scalar(int i0, std::int64_t k, int j, const vchunk& ylen) const;  // ordinary
-//        // bond_scalar of bond k of node i0 (partner j) for the W lanes i0 + l (partners j + l)
-// or
-//   void run_force(int p, const Bonds&, const Field<D>& y, Field<D>& f) const;  // f of the nodes of run p's chunks
-// In undamaged scenes (so without bond work) the bond pass then takes the chunks W nodes at a
-// time (node j's values as contiguous vectors, per-bond data as node i0's scalars) and the other
-// nodes with the per-node code; the split is fixed by the bonds, so results still do not depend on
-// the threads. Each lane sums its bonds in family order (not the 8 partial sums below); the
-// results differ from the per-node code's at round-off only.
+// [N/m^3] for ordinary models (force along the deformed bond Y = y_j - y_i), f_i = sum_j f_ij(Y)
+// for non-ordinary ones. What a model or its kernel supplies, role by role, is a named concept
+// in kernel_concepts.hpp (ordinary or NonOrdinaryKernel; KernelProvider, FamilyKernel,
+// NodeTermKernel, HourglassKernel, ChunkRunKernel, OrdinaryChunkKernel); each is tested at compile
+// time, so an ordinary model compiles the plain loop below and a switched-off role costs nothing.
+// Chunks: in undamaged scenes a chunk kernel takes the nodes of translated families W at a time
+// (node j's values as contiguous vectors, per-bond data as node i0's scalars) and the other nodes
+// take the per-node code; the split is fixed by the bonds, so results do not depend on the
+// threads. Each lane sums its bonds in family order (not the 8 partial sums below); the results
+// differ from the per-node code's at round-off only.
 // Bond work (optional, for critical-micropotential damage, damage/micropotential.hpp):
 // internal_force(model, bonds, y, f, &work) also integrates the work of each pair's force over the
 // step, inside the force pass, for the bond k (i -> j) of the pair's lower node (j > i) only:
@@ -49,13 +18,9 @@
 // t_k, the bond_scalar, and f_k = t_k Y_k; non-ordinary: the D components), Y^old the positions of
 // the previous pass, keep_k = intact[k]; with y_old null the pass only stores g (the first pass).
 // It also sets w_max[i], the largest w of node i's bonds with j > i, so that the breaking test
-// skips the nodes below w_C without reading their bonds.
-// A kernel with node_force must then also supply
-//   Vec<D> node_share(std::size_t i, std::int64_t k, int j) const;  // bond k's part of node_force [N/m^3]
-// A kernel may also supply
-//   Vec<D> hourglass_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const;  // part of bond_force [N/m^3]
-// which the work leaves out when work.hourglass is false (Peridigm's micropotential, 000c sec. 2.3).
-// A family kernel takes the work as family_force<Damaged, true>(i, bonds, y, &work). Without it
+// skips the nodes below w_C without reading their bonds. A NodeTermKernel then also supplies
+// node_share; a HourglassKernel's hourglass part is left out when work.hourglass is false. A
+// FamilyKernel takes the work as family_force<Damaged, true>(i, bonds, y, &work). Without work
 // (default) the passes compile as before (template flag Out = false): no store, no branch.
 // Owner computes (gather only, no atomics): bit-identical results for any number of threads.
 // Broken bonds are zeroed by multiplying with intact[k]; the undamaged scene compiles a loop
@@ -68,6 +33,7 @@
 #pragma once
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
+#include "pd/kernel_concepts.hpp"
 #include "pd/parallel.hpp"
 #include "pd/chunk_simd.hpp"
 #include "pd/stencil_runs.hpp"
@@ -130,12 +96,11 @@ inline void for_lanes(std::int64_t kb, std::int64_t ke, const std::uint8_t* inta
     for (int l = 0; k < ke; ++k, ++l) bond(k, l, Damaged ? static_cast<double>(intact[k]) : 1.0);
 }
 
-// True unless the model declares `static constexpr bool ordinary = false`.
+// True unless the kernel is a NonOrdinaryKernel.
 template <class Model>
 constexpr bool is_ordinary()
 {
-    if constexpr (requires { Model::ordinary; }) return Model::ordinary;
-    else return true;
+    return !NonOrdinaryKernel<Model>;
 }
 
 // Bond work of bond k (i -> j, j > i) of the force pass (header): fk = its force density times keep
@@ -195,7 +160,7 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     const double* y1 = D > 1 ? y.c[1].data() : nullptr;
     const double* y2 = D > 2 ? y.c[2].data() : nullptr;
     auto node = [&](std::size_t i) {
-        if constexpr (requires { model.template family_force<Damaged>(std::size_t{}, bonds, y); }) {
+        if constexpr (FamilyKernel<Model, D>) {
             const Vec<D> fi = model.template family_force<Damaged, Out>(i, bonds, y, out);
             for (int d = 0; d < D; ++d) f.c[d][i] = fi[d];
         } else {
@@ -232,14 +197,14 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                     for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
                     if constexpr (Out)
                         if (static_cast<std::size_t>(j) > i) {
-                            if constexpr (requires { model.node_force(i); }) fk += keep * model.node_share(i, k, j);
-                            if constexpr (requires { model.hourglass_force(i, k, j, Y); })
+                            if constexpr (NodeTermKernel<Model>) fk += keep * model.node_share(i, k, j);
+                            if constexpr (HourglassKernel<Model, D>)
                                 if (!out->hourglass) fk -= keep * model.hourglass_force(i, k, j, Y);
                             w_max = std::max(w_max, bond_work<D, false>(*out, i, k, j, Y.c.data(), fk.c.data(), keep));
                         }
                 }
             });
-            if constexpr (requires { model.node_force(i); }) {
+            if constexpr (NodeTermKernel<Model>) {
                 const Vec<D> fn = model.node_force(i);
                 for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d) + fn[d];
             } else {
@@ -249,13 +214,13 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
         }
     };
     // Chunks of translated families (stencil_runs.hpp), undamaged scenes only: W nodes per call.
-    if constexpr (!Damaged && requires { model.chunks(bonds); model.run_force(0, bonds, y, f); }) {
+    if constexpr (!Damaged && ChunkRunKernel<Model, D>) {
         if (const StencilRuns* runs = model.chunks(bonds))
             if (for_runs_then_rest(*runs, bonds, [&](std::size_t p) { model.run_force(static_cast<int>(p), bonds, y, f); }, node)) return;
     }
 #ifdef PD_CHUNK_WIDTH
-    if constexpr (!Damaged && is_ordinary<Model>() && requires(const vchunk& v) { model.chunks(bonds); model.chunk_scalar(0, std::int64_t{}, 0, v); }) {
-        static_assert(!requires { model.node_force(std::size_t{}); }, "ordinary chunk kernels have no node term");
+    if constexpr (!Damaged && is_ordinary<Model>() && OrdinaryChunkKernel<Model>) {
+        static_assert(!NodeTermKernel<Model>, "ordinary chunk kernels have no node term");
         if (const StencilRuns* runs = model.chunks(bonds))
             if (for_chunks_then_rest(*runs, bonds, [&](std::size_t q) { ordinary_chunk(model, bonds, runs->chunk_start[q], y, f); }, node)) return;
     }
@@ -279,8 +244,8 @@ void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Fiel
         else
             detail::bond_pass<false, false>(kernel, bonds, y, f);
     };
-    if constexpr (requires { model.with_kernel(pass, bonds); }) model.with_kernel(pass, bonds);
-    else if constexpr (requires { model.with_kernel(pass); }) model.with_kernel(pass);
+    if constexpr (KernelProviderForBonds<Model, decltype(pass)>) model.with_kernel(pass, bonds);
+    else if constexpr (KernelProvider<Model, decltype(pass)>) model.with_kernel(pass);
     else pass(model);
 }
 

@@ -436,6 +436,9 @@ struct Correspondence {
         return W;
     }
 
+    // RateFormModel (models/rate_form.hpp): the stress of this instance needs update_stress each step.
+    bool rate_form() const { return par.law == Law::flanagan_taylor; }
+
     // Flanagan-Taylor update (3D): from F at y and Fdot at v, advance R, V, sigma_hat by dt [s]
     // and set sigma = R sigma_hat R^T (laws/flanagan_taylor.hpp; 000b sec. 1.5 [CODE] steps 1-8).
     template <int Dy>

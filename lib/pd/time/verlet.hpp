@@ -16,7 +16,7 @@
 // History models (viscoelastic, plastic): a model with set_time_step(dt) gets the step before the
 // force evaluation (0 in start()), which evaluates the trial state from the committed history, and
 // commit() after it, once per step; models without these members compile as before.
-// Rate-form stress (Correspondence<3> with Law::flanagan_taylor, models/correspondence.hpp): after
+// Rate-form stress (RateFormModel, models/rate_form.hpp: Correspondence<3> with Law::flanagan_taylor): after
 // damage and before the force evaluation, update_stress(bonds, y_m, v_s, dt) advances sigma_hat, R, V
 // over the step, y_m = x + (u_n + u_{n+1})/2 the mid-step configuration and v_s = (u_{n+1} - u_n)/dt
 // (= v_{n+1/2}), as that header prescribes (exactly skew L for a rigid rotation). start() takes the
@@ -35,6 +35,8 @@
 #include "pd/damage/micropotential.hpp"
 #include "pd/damage/singular_nodes.hpp"
 #include "pd/errors.hpp"
+#include "pd/kernel_concepts.hpp"
+#include "pd/models/rate_form.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -122,10 +124,10 @@ public:
         constrained_.assign(body.size() * D, 0);
         for (const auto& p : boundary.prescribed)
             for (int i : p.nodes) constrained_[i * D + p.component] = 1;
-        if constexpr (requires { model.set_time_step(0.0); }) model.set_time_step(0.0);  // history: the initial state is reached instantly
+        if constexpr (TimeStepped<Model>) model.set_time_step(0.0);  // history: the initial state is reached instantly
         u_old_.fill(0.0);  // rate form: the pseudo step from the reference (header)
         evaluate(1.0);
-        if constexpr (requires { model.commit(); }) model.commit();
+        if constexpr (Committing<Model>) model.commit();
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
         double mass = 0;  // [kg]
@@ -153,9 +155,9 @@ public:
         for (int d = 0; d < D; ++d) b_prev_.c[d] = b_.c[d];
         t += dt;
         ++step_count;
-        if constexpr (requires { model.set_time_step(dt); }) model.set_time_step(dt);
+        if constexpr (TimeStepped<Model>) model.set_time_step(dt);
         evaluate(dt);
-        if constexpr (requires { model.commit(); }) model.commit();
+        if constexpr (Committing<Model>) model.commit();
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < n; ++i) {
                 if (constrained_[i * D + d]) continue;
@@ -229,11 +231,11 @@ private:
             broken_bonds += broke;
             // Models with bond-dependent per-node constants (PALS multipliers, LPS m_i and SCF_i)
             // refresh them over the intact bonds; correspondence recomputes K in its point pass.
-            if constexpr (requires { model.recompute(bonds); })
+            if constexpr (BondDependentModel<Model>)
                 if (broke > 0) model.recompute(bonds);
         }
-        if constexpr (D == 3 && requires { model.par.law == Model::Law::flanagan_taylor; model.update_stress(bonds, y_, v, dt); })
-            if (model.par.law == Model::Law::flanagan_taylor) {  // rate form (header)
+        if constexpr (D == 3 && RateFormModel<Model>)
+            if (model.rate_form()) {  // rate form (header)
                 if (y_mid_.size() != body.size()) {
                     y_mid_.resize(body.size());
                     v_step_.resize(body.size());
