@@ -1,5 +1,6 @@
-// Neighbour search by cell lists, O(N) for bounded density, and CSR bond families (bonds.hpp).
+// CSR bond families (bonds.hpp) from the neighbour search of neighbors.hpp.
 #include "pd/bonds.hpp"
+#include "pd/neighbors.hpp"
 #include "pd/partial_area.hpp"
 
 #include <algorithm>
@@ -35,70 +36,21 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     // Search reach: delta, or (exact-area) the farthest cell corner the horizon can touch.
     const double reach = (exact ? delta + body.dx * std::sqrt(0.5) : delta) * (1 + horizon_roundoff);
 
-    // 1. Cell lists: cells of side a little above the search reach over the bounding box, nodes
-    // sorted by cell. With side exactly delta, lattice points at exactly delta (integer m) sit on
-    // cell faces and round-off in (x - lo)/side can put two neighbours two cells apart (bond lost).
+    // 1. Candidates by cell lists (neighbors.hpp), cells a little wider than the search reach. With
+    // side exactly delta, lattice points at exactly delta (integer m) sit on cell faces and
+    // round-off in (x - lo)/side can put two neighbours two cells apart (bond lost).
     const double cell = reach * (1 + 1e-6);  // 1e-6 >> horizon_roundoff and index round-off
-    Vec<D> lo, hi;
-    for (int d = 0; d < D; ++d) {
-        lo[d] = *std::min_element(body.x.c[d].begin(), body.x.c[d].end());
-        hi[d] = *std::max_element(body.x.c[d].begin(), body.x.c[d].end());
-    }
-    std::array<long, D> nc{};
-    long ncell = 1;
-    for (int d = 0; d < D; ++d) {
-        nc[d] = std::max(1L, static_cast<long>((hi[d] - lo[d]) / cell) + 1);
-        ncell *= nc[d];
-    }
-    auto cell_coord = [&](std::size_t i, int d) {
-        return std::min(nc[d] - 1, static_cast<long>((body.x.c[d][i] - lo[d]) / cell));
-    };
-    std::vector<long> cell_start(ncell + 1, 0), cell_of(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        long c = 0;
-        for (int d = D - 1; d >= 0; --d) c = c * nc[d] + cell_coord(i, d);
-        cell_of[i] = c;
-        ++cell_start[c + 1];
-    }
-    for (long c = 0; c < ncell; ++c) cell_start[c + 1] += cell_start[c];
-    std::vector<int> sorted(n);
-    {
-        std::vector<long> fillp(cell_start.begin(), cell_start.end() - 1);
-        for (std::size_t i = 0; i < n; ++i) sorted[fillp[cell_of[i]]++] = static_cast<int>(i);
-    }
+    const NeighborLists near = neighbor_lists(body.x, cell, [&](int i, int j) {
+        return norm(body.x[j] - body.x[i]) <= reach && (!opt.keep || opt.keep(i, j));
+    });
 
     // 2. Families, sorted by partner index for locality.
     const double h = body.dx;
     const double ca = std::cos(opt.lattice_angle), sa = std::sin(opt.lattice_angle);
-    std::vector<int> fam;
     for (std::size_t i = 0; i < n; ++i) {
-        fam.clear();
-        std::array<long, D> ci{};
-        for (int d = 0; d < D; ++d) ci[d] = cell_coord(i, d);
         const Vec<D> xi = body.x[i];
-        long nb = 1;
-        for (int d = 0; d < D; ++d) nb *= 3;
-        for (long s = 0; s < nb; ++s) {
-            long rest = s, c = 0;
-            std::array<long, D> cj{};
-            bool ok = true;
-            for (int d = 0; d < D; ++d) {
-                cj[d] = ci[d] + rest % 3 - 1;
-                rest /= 3;
-                if (cj[d] < 0 || cj[d] >= nc[d]) ok = false;
-            }
-            if (!ok) continue;
-            for (int d = D - 1; d >= 0; --d) c = c * nc[d] + cj[d];
-            for (long q = cell_start[c]; q < cell_start[c + 1]; ++q) {
-                const int j = sorted[q];
-                if (j == static_cast<int>(i)) continue;
-                if (norm(body.x[j] - xi) > reach) continue;
-                if (opt.keep && !opt.keep(static_cast<int>(i), j)) continue;
-                fam.push_back(j);
-            }
-        }
-        std::sort(fam.begin(), fam.end());
-        for (int j : fam) {
+        for (std::int64_t q = near.offset[i]; q < near.offset[i + 1]; ++q) {
+            const int j = near.partner[q];
             const double r = norm(body.x[j] - xi);
             if (r == 0) throw std::invalid_argument("duplicate points " + std::to_string(i) + " and " + std::to_string(j));
             double beta = 1;

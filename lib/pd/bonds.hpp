@@ -1,5 +1,5 @@
 // Bond families in CSR form (offsets, partners) with structure-of-arrays per-bond data, the
-// reverse-bond index (bond j->i of bond i->j in O(1)), and the neighbour search by cell lists.
+// reverse-bond index (bond j->i of bond i->j in O(1)); the neighbours come from neighbors.hpp.
 // A family holds every j != i with |x_j - x_i| <= delta (boundary included).
 // Partial volumes (spec/002 sec. 3.2): `none` uses the full V_j; `pa-pdlammps` scales V_j by
 //   beta = 1 for |xi| <= delta - h/2,  beta = (delta + h/2 - |xi|)/h for delta - h/2 < |xi| <= delta,
@@ -62,7 +62,7 @@ struct BondOptions {
     PartialVolume partial_volume = PartialVolume::none;
     double lattice_angle = 0;  // exact-area: rotation of the 2D lattice's axes from x [rad]
     // Optional filter: a bond i->j is created only when keep(i, j) is true (pre-cracks as cut
-    // bonds). It must be symmetric in i and j.
+    // bonds). It must be symmetric in i and j, and safe to call from several threads at once.
     std::function<bool(int i, int j)> keep;
 };
 

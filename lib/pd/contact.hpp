@@ -10,8 +10,8 @@
 // C [N/m^6] is the penalty constant; the pair potential is U_ij = 1/2 C V_i V_j (r_c - r)^2, so
 // the pair forces V_i b_i = -V_j b_j are equal and opposite. Default C = 18 K/(pi delta^5) x
 // factor: the PMB micromodulus c = 18K/(pi delta^4) per unit length of overlap (r_c - r)/delta.
-// Search: Verlet list of the pairs closer than r_c + skin from a cell list of cell size
-// r_c + skin, rebuilt when some point has moved more than skin/2 since the last build (then no
+// Search: Verlet list of the pairs closer than r_c + skin from the cell lists of neighbors.hpp
+// (cell size r_c + skin), rebuilt when some point has moved more than skin/2 since the last build (then no
 // pair can have entered r_c unseen). Owner computes: every point visits its own list (the list
 // holds both i->j and j->i), so the result does not depend on the thread count.
 //
@@ -35,6 +35,7 @@
 #include "pd/bonds.hpp"
 #include "pd/field.hpp"
 #include "pd/lattice.hpp"
+#include "pd/neighbors.hpp"
 
 #include <algorithm>
 #include <array>
@@ -42,7 +43,6 @@
 #include <cstdint>
 #include <numbers>
 #include <stdexcept>
-#include <unordered_map>
 #include <vector>
 
 namespace pd {
@@ -123,43 +123,15 @@ private:
         return false;
     }
 
-    // Cell list of cell side h = rc + skin; candidate pairs within h, both orders, sorted per point.
+    // Candidate pairs closer than h = rc + skin, both orders, sorted per point (neighbors.hpp).
     void rebuild(const Field<D>& y)
     {
         ++rebuilds;
         y_build_ = y;
         const double h = rc + skin;
-        const std::size_t n = y.size();
-        Vec<D> lo;
-        for (int d = 0; d < D; ++d) lo[d] = *std::min_element(y.c[d].begin(), y.c[d].end());
-        auto cell_of = [&](std::size_t i) {
-            std::array<long, 3> c{0, 0, 0};
-            for (int d = 0; d < D; ++d) c[d] = static_cast<long>(std::floor((y.c[d][i] - lo[d]) / h));
-            return c;
-        };
-        auto key = [](const std::array<long, 3>& c) { return (c[0] * 73856093L) ^ (c[1] * 19349663L) ^ (c[2] * 83492791L); };
-        std::unordered_map<long, std::vector<int>> cells;
-        for (std::size_t i = 0; i < n; ++i) cells[key(cell_of(i))].push_back(static_cast<int>(i));
-        std::vector<std::vector<int>> lists(n);
-        const long r1 = D > 1 ? 1 : 0, r2 = D > 2 ? 1 : 0;
-#pragma omp parallel for schedule(static)
-        for (long i = 0; i < static_cast<long>(n); ++i) {
-            const auto c = cell_of(i);
-            for (long a = -1; a <= 1; ++a)
-                for (long b = -r1; b <= r1; ++b)
-                    for (long g = -r2; g <= r2; ++g) {
-                        const auto it = cells.find(key({c[0] + a, c[1] + b, c[2] + g}));
-                        if (it == cells.end()) continue;
-                        for (int j : it->second)
-                            if (j != i && norm(y[j] - y[i]) < h) lists[i].push_back(j);
-                    }
-            std::sort(lists[i].begin(), lists[i].end());
-            lists[i].erase(std::unique(lists[i].begin(), lists[i].end()), lists[i].end());  // hash collisions
-        }
-        off_.assign(n + 1, 0);
-        for (std::size_t i = 0; i < n; ++i) off_[i + 1] = off_[i] + static_cast<std::int64_t>(lists[i].size());
-        nbr_.resize(off_[n]);
-        for (std::size_t i = 0; i < n; ++i) std::copy(lists[i].begin(), lists[i].end(), nbr_.begin() + off_[i]);
+        NeighborLists near = neighbor_lists(y, h, [&](int i, int j) { return norm(y[j] - y[i]) < h; });
+        off_ = std::move(near.offset);
+        nbr_ = std::move(near.partner);
     }
 };
 
