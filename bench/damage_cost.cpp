@@ -21,7 +21,7 @@
 #include "pd/damage/micropotential.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/options.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"

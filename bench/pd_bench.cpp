@@ -19,15 +19,15 @@
 // Writes: CSV header (unless --no-header) and one line
 //   model,nodes,bonds,steps,threads,wall_s,bond_updates_per_s
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/io/options.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/timer.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/parallel.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 

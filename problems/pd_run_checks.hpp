@@ -3,7 +3,7 @@
 #pragma once
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
-#include "pd/material.hpp"
+#include "pd/core/material.hpp"
 #include "pd_run_integrate.hpp"  // pd_run::fail
 
 #include <string>

@@ -13,7 +13,7 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
-#include "pd/heat/heat_cvode.hpp"
+#include "pd/time/heat_cvode.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"

@@ -2,12 +2,12 @@
 // the step loop shared by both modes (pd::Unstable -> exit 3, files written so far kept), the
 // heat-only loop and the mechanical loop (velocity Verlet) with the heat run following its clock.
 #pragma once
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
 #include "pd/io/state_output.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/material.hpp"
+#include "pd/core/timer.hpp"
+#include "pd/core/material.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_heat.hpp"

@@ -1,6 +1,6 @@
 // reference/pmb_pair_stiffness.hpp -- the stiffness matrix of linearised PMB written out pair by
 // pair, independent of the peridynamics library (the reference of the finite-difference assembly
-// in pd/analysis/stiffness_matrix.hpp, problems/3d/hourglass_modes.cpp and its test).
+// in problems/common/analysis/stiffness_matrix.hpp, problems/3d/hourglass_modes.cpp and its test).
 //
 // PMB pair springs (Silling & Askari 2005), linearised at the reference configuration, influence
 // omega = 1: the force on i from j is c V_i V_j ((u_j - u_i).n / |xi|) n, n = xi/|xi|, xi = x_j - x_i,

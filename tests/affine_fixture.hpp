@@ -2,8 +2,8 @@
 // test_model_constants.cpp).
 #pragma once
 
-#include "pd/field.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <array>
 

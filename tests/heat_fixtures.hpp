@@ -1,6 +1,6 @@
 // Shared set-up of the heat-conduction tests.
 #pragma once
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 
 namespace pd_test {
 

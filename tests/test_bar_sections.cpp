@@ -1,9 +1,9 @@
 // tests/test_bar_sections.cpp -- the gripped-bar helpers: gauge layers, axis nodes, grip reaction,
-// section means and lateral stretch (pd/measure/bar_sections.hpp); grip conditions and the uniform
-// uniaxial start field (pd/bc/grips.hpp). References: hand counts on a 10 x 2 x 1 mm bar, dx = 0.5
+// section means and lateral stretch (problems/common/measure/bar_sections.hpp); grip conditions and the uniform
+// uniaxial start field (problems/common/grips.hpp). References: hand counts on a 10 x 2 x 1 mm bar, dx = 0.5
 // mm (nx = 20 layers, 4 x 2 nodes per layer), and affine fields whose slopes are known exactly.
-#include "pd/bc/grips.hpp"
-#include "pd/measure/bar_sections.hpp"
+#include "problems/common/grips.hpp"
+#include "problems/common/measure/bar_sections.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-// Contact (lib/pd/contact.hpp): node-node penalty against hand values and a brute-force pair sum;
+// Contact (lib/pd/bc/contact.hpp): node-node penalty against hand values and a brute-force pair sum;
 // impactor geometry against hand values; a sphere bouncing off a free PMB cube, and two free PMB
 // blocks colliding by node-node contact, integrated with Explicit's extra-force hook: total
 // momentum and total energy (bodies + impactor + contact potential), rebound.
-#include "pd/contact.hpp"
+#include "pd/bc/contact.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"

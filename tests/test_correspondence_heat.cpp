@@ -4,7 +4,7 @@
 // larger than the result and cancel (x up to 16 dx).
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <gtest/gtest.h>
 

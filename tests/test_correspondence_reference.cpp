@@ -157,7 +157,7 @@ TEST(CorrespondenceReference, OptimisedForceEqualsTextbookFormulaWithDamageAndHo
 }
 
 // Undamaged lattice with x-rows of 24 nodes: the nodes 3 .. 20 of a row have translated families,
-// so the chunk kernels (stencil_runs.hpp, correspondence_chunks.hpp) take most nodes and the
+// so the chunk kernels (translated_families.hpp, correspondence_chunks.hpp) take most nodes and the
 // per-node code the rest; both must give the textbook force.
 TEST(CorrespondenceReference, ChunkedForceEqualsTextbookFormula)
 {

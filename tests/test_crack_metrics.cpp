@@ -2,7 +2,7 @@
 // known by construction: a straight crack at 30 degrees, a Y branch at a known point with known
 // branch angles, tip histories of known speed, a crack centreline with known offsets, and level
 // curves of linear fields (marching squares is exact for a linear field).
-#include "pd/damage/crack_metrics.hpp"
+#include "problems/common/crack/crack_metrics.hpp"
 
 #include <gtest/gtest.h>
 

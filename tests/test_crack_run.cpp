@@ -1,7 +1,7 @@
-// The shared PMB fracture run (damage/crack_run.hpp) in 3D: micromodulus and critical stretch
+// The shared PMB fracture run (problems/common/crack/crack_run.hpp) in 3D: micromodulus and critical stretch
 // against spec/002 sec. 7.2, the Rayleigh speed against the exact root for a Poisson solid, and
 // the run loop's step count, time step bound and sampling on an unloaded block.
-#include "pd/damage/crack_run.hpp"
+#include "problems/common/crack/crack_run.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// Window means and the two-peak reading of a force history (pd/analysis/force_history.hpp), on
+// Window means and the two-peak reading of a force history (problems/common/analysis/force_history.hpp), on
 // signals whose answers are known by hand.
-#include "pd/analysis/force_history.hpp"
+#include "problems/common/analysis/force_history.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 // 1e-10 on the stored heat (200 steps of ~40 nodes each accumulate round-off).
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
-#include "pd/heat/heat_cvode.hpp"
-#include "pd/lattice.hpp"
-#include "pd/parallel.hpp"
+#include "pd/time/heat_cvode.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conductivity.hpp"
 #include "pd/heat/correspondence_heat.hpp"
-#include "pd/heat/heat_cvode.hpp"
-#include "pd/lattice.hpp"
+#include "pd/time/heat_cvode.hpp"
+#include "pd/core/lattice.hpp"
 #include "reference/heat_1d.hpp"
 #include "reference/heat_kirchhoff.hpp"
 

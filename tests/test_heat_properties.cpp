@@ -4,8 +4,8 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/properties.hpp"
-#include "pd/heat/time_to_reach.hpp"
-#include "pd/lattice.hpp"
+#include "pd/time/heat_time_to_reach.hpp"
+#include "pd/core/lattice.hpp"
 #include "reference/enthalpy.hpp"
 
 #include <Eigen/Dense>

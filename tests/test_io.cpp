@@ -4,7 +4,7 @@
 #include "pd/io/convergence.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/io/vtu.hpp"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // Lattices, node sets, neighbour families, partial volumes, influence moments.
 // References are hand counts and closed-form integrals written out in the comments.
-#include "pd/bonds.hpp"
-#include "pd/influence.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/influence.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <gtest/gtest.h>
 

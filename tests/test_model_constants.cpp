@@ -105,7 +105,7 @@ TEST(LPSConstants, OneDimensionalBarEnergyAndForce)
     // f_7: nodes 9 (|xi| = 2 dx, theta = +u/(28 dx)) and 8 (dx, +2u/(28 dx)) on its right pull it the
     // same way: f_7 = +E u / (196 dx^2) = f_13 (mirror x -> -x with u -> -u; the force is linear in u).
     EXPECT_NEAR(f.c[0][7] / (E * u / (196 * dx * dx)), 1.0, 1e-9);
-    // Out of reach. Not exactly 0: the chunk kernel (stencil_runs.hpp) gives every node of a chunk
+    // Out of reach. Not exactly 0: the chunk kernel (translated_families.hpp) gives every node of a chunk
     // the |xi| of the chunk's first node, equal to its own to an ulp, so a bond at rest has e ~ 1e-19 m
     // instead of 0; that leaves ~1e-3 N/m^3 here, 1e-11 of the force one node away (1e8).
     for (int i : {0, 1, 2, 3, 17, 18, 19, 20}) EXPECT_LT(std::abs(f.c[0][i]), 1e-9 * E * u / (196 * dx * dx)) << "node " << i;

@@ -3,9 +3,9 @@
 // (no closed form, no breakpoints), areas known in closed form (whole disc, half disc, square inside),
 // and the partition of the disc: the cells of a full family plus the node's own cover the horizon
 // exactly, so their areas add up to pi delta^2.
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/models/surface_correction.hpp"
-#include "pd/partial_area.hpp"
+#include "pd/core/partial_area.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 // about 2x when the steps double (it would not if the force were inconsistent with W or with the
 // flow rule).
 #include "pd/bond_loop.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"
 

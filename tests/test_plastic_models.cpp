@@ -17,7 +17,7 @@
 //    (dissipation); below yield the stored energy is the elastic model's.
 #include "pd/bond_loop.hpp"
 #include "pd/laws/j2.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/models/plastic_correspondence.hpp"
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"

@@ -2,7 +2,7 @@
 // values, the weights of straight grid-aligned edges by hand, and the area conservation
 // |sum_i weight_i dx^2 - A| / A with and without the correction on convex, concave and holed
 // shapes. Reference areas: the shoelace formula written here (not the library's signed_area).
-#include "pd/polygon_weights.hpp"
+#include "pd/core/polygon_weights.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,9 +4,9 @@
 // y = 5 mm from x = 0 to x = 10 mm, through the whole thickness (z from -1 to 4 mm).
 // Reference: an independent brute force in exact integer arithmetic (doubled coordinates: node
 // (i, j, l) at (2i + 1, 2j + 1, 2l + 1), crack plane y = 10, edge x = 20) calling no library routine.
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/damage/precrack.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <gtest/gtest.h>
 

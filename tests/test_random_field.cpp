@@ -5,10 +5,10 @@
 // Statistical tolerances: z standard errors with z = 5 (two-sided false-alarm probability
 // 5.7e-7 for a fresh seed; the seeds here are fixed, so each test is deterministic).
 #include "pd/damage/critical_stretch.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/parallel.hpp"
 #include "pd/models/pmb.hpp"
-#include "pd/random_field.hpp"
-#include "pd/random_material.hpp"
+#include "pd/core/random_field.hpp"
+#include "pd/core/random_material.hpp"
 #include "pd/time/verlet.hpp"
 
 #include <gtest/gtest.h>

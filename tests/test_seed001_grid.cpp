@@ -4,10 +4,10 @@
 // (0, 20)-(50, 20) mm, bonds touching the segment count as cut (precrack.hpp).
 // References: the spec's [DERIVED] values, re-derived by hand in the comments, and an independent
 // brute force in exact integer arithmetic (doubled coordinates) that calls no library routine.
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/precrack.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/models/pmb.hpp"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 // all its bonds (both directions) at the next step, leave every other node's remaining bonds, and
 // respect no-fail nodes and the switch CriticalStretch::detach_singular.
 #include "pd/damage/critical_stretch.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/time/verlet.hpp"
 

@@ -1,6 +1,6 @@
 // The stability sweep finds the von Neumann limit of velocity Verlet on a linear oscillator:
 // for omega = 1 the scheme is stable for dt < 2 / omega and unstable beyond (closed form).
-#include "pd/io/stability_sweep.hpp"
+#include "problems/common/stability_sweep.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/verlet.hpp"
 

@@ -1,5 +1,5 @@
-// Chunks of translated families (stencil_runs.hpp) and the chunk kernels of PMB, LPS and PALS
-// (bond_loop.hpp, chunk_simd.hpp). The run finder is checked on lattices whose rows are known;
+// Chunks of translated families (translated_families.hpp) and the chunk kernels of PMB, LPS and PALS
+// (bond_loop.hpp, chunk_vector.hpp). The run finder is checked on lattices whose rows are known;
 // the chunked forces against (a) a pair-force loop written here from the PMB formula and (b) the
 // per-node code of the same model on the same bonds with damage bookkeeping on and every bond
 // intact, which never takes the chunk path. (Correspondence: test_correspondence_reference.cpp.)
@@ -7,7 +7,7 @@
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <gtest/gtest.h>
 

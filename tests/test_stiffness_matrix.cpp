@@ -1,8 +1,8 @@
-// tests/test_stiffness_matrix.cpp -- pd/analysis/stiffness_matrix.hpp: the finite-difference
+// tests/test_stiffness_matrix.cpp -- problems/common/analysis/stiffness_matrix.hpp: the finite-difference
 // stiffness of a small PMB cube against the pair-spring matrix written out independently
 // (reference/pmb_pair_stiffness.hpp), the rigid modes (orthonormal, annihilated by K) and the
 // spectrum counts (6 zero modes in 3D, none negative, symmetric K).
-#include "pd/analysis/stiffness_matrix.hpp"
+#include "problems/common/analysis/stiffness_matrix.hpp"
 #include "pd/models/pmb.hpp"
 #include "reference/pmb_pair_stiffness.hpp"
 

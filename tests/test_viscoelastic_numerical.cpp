@@ -3,7 +3,7 @@
 // = 0.75 mm / 3.05): c_S = 6128 m/s, f_cS = 24.9 MHz; gamma_b = 0.0201, 0.21, 8.0 and tau_b = 6.32,
 // 5.81, 2.13 ns for eta = 1.01, 1.1, 3.0; maximum phase asin(gamma_b/(2 + gamma_b)) = 0.57, 5.45, 53.1 deg.
 // Tolerances: half a unit of the last printed digit (gamma_b: exact).
-#include "pd/material.hpp"
+#include "pd/core/material.hpp"
 #include "pd/models/viscoelastic_numerical.hpp"
 
 #include <gtest/gtest.h>

@@ -31,12 +31,12 @@
 // SIMD code (y_j gathered, vsqrtpd, vdivpd) -- provided sqrt need not set errno, i.e. the build
 // uses -fno-math-errno; otherwise the loop stays scalar, with 8 independent partial sums.
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 #include "pd/kernel_concepts.hpp"
-#include "pd/parallel.hpp"
-#include "pd/chunk_simd.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/simd/chunk_vector.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -213,7 +213,7 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
             if constexpr (Out) out->w_max[i] = w_max;
         }
     };
-    // Chunks of translated families (stencil_runs.hpp), undamaged scenes only: W nodes per call.
+    // Chunks of translated families (translated_families.hpp), undamaged scenes only: W nodes per call.
     if constexpr (!Damaged && ChunkRunKernel<Model, D>) {
         if (const StencilRuns* runs = model.chunks(bonds))
             if (for_runs_then_rest(*runs, bonds, [&](std::size_t p) { model.run_force(static_cast<int>(p), bonds, y, f); }, node)) return;

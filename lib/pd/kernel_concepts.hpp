@@ -6,10 +6,10 @@
 // Every kernel:  either ordinary, with   double bond_scalar(i, k, j, |Y|)   (force on i = t Y),
 //                or NonOrdinaryKernel,  with   Vec<D> bond_force(i, k, j, Y)   (both ends' states).
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/chunk_simd.hpp"
-#include "pd/field.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/simd/chunk_vector.hpp"
+#include "pd/core/field.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <concepts>
 #include <cstddef>
@@ -51,7 +51,7 @@ concept NodeTermKernel = requires(const K& k, std::size_t i) { k.node_force(i); 
 template <class K, int D>
 concept HourglassKernel = requires(const K& k, const Vec<D>& Y) { k.hourglass_force(std::size_t{}, std::int64_t{}, 0, Y); };
 
-// Chunks of W nodes with translated families (stencil_runs.hpp), undamaged scenes only:
+// Chunks of W nodes with translated families (translated_families.hpp), undamaged scenes only:
 // chunks(bonds) (null when there are none) and run_force(p, bonds, y, f), the forces of the nodes of
 // run p's chunks.
 template <class K, int D>

@@ -15,11 +15,11 @@
 //   --length --area] [--volume half|full] [--quick] [--check] [--out DIR]; default: the N study.
 // Writes: convergence.csv, work_precision.csv, summary.csv, params.csv.
 #include "pd/heat/agwai.hpp"
-#include "pd/heat/time_to_reach.hpp"
+#include "pd/time/heat_time_to_reach.hpp"
 #include "pd/io/convergence.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/case.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 #include "reference/heat_1d.hpp"
 
 #include <cmath>

@@ -26,7 +26,7 @@
 #include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/stability_sweep.hpp"
+#include "problems/common/stability_sweep.hpp"
 #include "reference/bar_1d_scores.hpp"
 
 #include "bar_integrators.hpp"

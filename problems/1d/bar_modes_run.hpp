@@ -3,7 +3,7 @@
 // Verlet or Newmark (beta 1/4, gamma 1/2) at dt = dt_scale x dt_SA (Silling-Askari with the 1D PMB
 // micromodulus), the tip (last node) sampled `samples` times per T1. Steps 2-5 of the driver.
 #pragma once
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/critical_step.hpp"

@@ -16,12 +16,12 @@
 //   [--check] [--out DIR]. Writes: oscillation.csv, profiles.csv, summary.csv, params.csv.
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
-#include "pd/heat/heat_cvode.hpp"
+#include "pd/time/heat_cvode.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/timer.hpp"
+#include "pd/core/lattice.hpp"
 #include "reference/heat_1d.hpp"
 
 #include <cmath>

@@ -13,10 +13,10 @@
 // Writes: history.csv, work_precision.csv, summary.csv, params.csv.
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/properties.hpp"
-#include "pd/heat/time_to_reach.hpp"
+#include "pd/time/heat_time_to_reach.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 #include "reference/enthalpy.hpp"
 
 #include <cmath>

@@ -17,7 +17,7 @@
 // Writes: frequency.csv, summary.csv, params.csv.
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/laws/maxwell.hpp"
 
 #include <algorithm>

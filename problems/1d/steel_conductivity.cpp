@@ -16,12 +16,12 @@
 // Writes: steady_convergence.csv, transient_convergence.csv, work_precision.csv, summary.csv, params.csv.
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conductivity.hpp"
-#include "pd/heat/time_to_reach.hpp"
+#include "pd/time/heat_time_to_reach.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/timer.hpp"
+#include "pd/core/lattice.hpp"
 #include "reference/heat_kirchhoff.hpp"
 
 #include <cmath>

@@ -14,7 +14,7 @@
 // Writes: summary.csv (first dx), convergence.csv (all dx), tip_history.csv, speed.csv,
 // damage.csv, crack_path.csv (phi = 0.41 level curve), params.csv.
 // Pre-crack bonds are kept as broken bonds, so phi (and the 0.41 contour) includes the pre-crack.
-#include "pd/damage/crack_run.hpp"
+#include "problems/common/crack/crack_run.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"

@@ -17,7 +17,7 @@
 //   [--quick] [--out DIR]
 // The full study (angles 0,5,10,20,30,40; m 3..7; dx 1 mm) is in problems/cases.txt.
 // Writes: summary.csv, paths.csv (centrelines), runs.csv, params.csv.
-#include "pd/damage/crack_run.hpp"
+#include "problems/common/crack/crack_run.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"

@@ -16,7 +16,7 @@
 // Run: kalthoff_winkler_2d [--dx-list 1e-3,2e-3] [--v 16.5] [--quick] [--check] [--out DIR]
 // Writes: summary.csv (first dx), convergence.csv, tip_history.csv, speed.csv, damage.csv,
 // crack_path.csv (phi = 0.41), params.csv.
-#include "pd/damage/crack_run.hpp"
+#include "problems/common/crack/crack_run.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"

@@ -15,10 +15,10 @@
 //   pair-mean] [--dt-factor 0.5] [--quick] [--check] [--out DIR].
 // Writes: summary.csv (row t50, s), work_precision.csv, params.csv.
 #include "pd/heat/agwai.hpp"
-#include "pd/heat/time_to_reach.hpp"
+#include "pd/time/heat_time_to_reach.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 #include "reference/heat_1d.hpp"
 #include "reference/heat_prism.hpp"
 

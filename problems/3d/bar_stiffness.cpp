@@ -17,13 +17,13 @@
 //      [--solver adr|newton] [--linear auto|cholesky|cg|lu] [--reuse-tangent] [--check] [--out DIR].
 //      ADR density: Gershgorin bounds of each model's reference tangent (exact for PMB; else x --bound-factor).
 // Writes: convergence.csv (one row per n, model, correction), summary.csv (finest n), params.csv.
-#include "pd/bc/bar_supports.hpp"
-#include "pd/bc/grips.hpp"
-#include "pd/io/bar_options.hpp"
+#include "problems/common/bar_supports.hpp"
+#include "problems/common/grips.hpp"
+#include "problems/common/bar_options.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/measure/bar_sections.hpp"
+#include "pd/core/timer.hpp"
+#include "problems/common/measure/bar_sections.hpp"
 #include "pd/models/registry.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/solve/newton.hpp"

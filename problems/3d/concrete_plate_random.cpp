@@ -19,9 +19,9 @@
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/pmb.hpp"
-#include "pd/random_field.hpp"
+#include "pd/core/random_field.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 

@@ -12,7 +12,7 @@
 // Run: crack_branching_3d [--dx 1e-3] [--sigma 6e6] [--t-end 70e-6] [--quick] [--check] [--out DIR]
 // Writes: summary.csv, tip_history.csv (mid and surface tips), speed.csv, damage.csv (phi > 0),
 // damage.vtu (final phi, ParaView), params.csv.
-#include "pd/damage/crack_run.hpp"
+#include "problems/common/crack/crack_run.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"

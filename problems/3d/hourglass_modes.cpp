@@ -10,7 +10,7 @@
 // References (never the model under test): 6 rigid-body modes in 3D, 3 in 2D (theory), and K r = 0
 // for the analytic rigid modes r; the PMB pair-spring matrix K_ij = -c V_i V_j n n^T / |xi|,
 // c = 18K/(pi delta^4) (reference/pmb_pair_stiffness.hpp), for the finite-difference assembly.
-// Test fields: pd/analysis/staggered_modes.hpp.
+// Test fields: problems/common/analysis/staggered_modes.hpp.
 // Compared: zero modes beyond the rigid ones (|lambda| < --zero-tol lambda_max); soft modes (below
 // 1/10 of the softest non-rigid LPS eigenvalue); the smallest non-rigid eigenvalues; Rayleigh
 // quotients of the checkerboard u = (-1)^(a+b+c) e_x, plain and under a bubble envelope, and of
@@ -20,12 +20,12 @@
 //      correspondence] [--zero-tol 1e-8] [--h 1e-5] [--quick] [--check] [--out DIR]
 // Writes: modes.csv (one row per model), eigenvalues.csv (lowest --spectrum per model), summary.csv,
 // params.csv.
-#include "pd/analysis/staggered_modes.hpp"
-#include "pd/analysis/stiffness_matrix.hpp"
+#include "problems/common/analysis/staggered_modes.hpp"
+#include "problems/common/analysis/stiffness_matrix.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/registry.hpp"
 #include "reference/pmb_pair_stiffness.hpp"
 

@@ -15,11 +15,11 @@
 //      [--E --nu --A --B --n] [--C-hg 0.02] [--tol 1e-6] [--quick] [--check] [--out DIR]
 //      (density 2810 kg/m^3 plays no part in the quasi-static solve.)
 // Writes: curve_<model>.csv, midsection_<model>.csv, summary.csv, params.csv.
-#include "pd/bc/grips.hpp"
+#include "problems/common/grips.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/measure/bar_sections.hpp"
+#include "pd/core/timer.hpp"
+#include "problems/common/measure/bar_sections.hpp"
 #include "pd/models/plastic_correspondence.hpp"
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"

@@ -19,8 +19,8 @@
 //      [--steps 50] [--strain 1] [--tol 1e-6] [--safety 1.2] [--quick] [--check] [--out DIR]
 // Load stepping and gauge measurement: large_stretch_steps.hpp.
 // Writes: curves.csv (one row per model and step), summary.csv, params.csv.
-#include "pd/bc/grips.hpp"
-#include "pd/io/bar_options.hpp"
+#include "problems/common/grips.hpp"
+#include "problems/common/bar_options.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/models/correspondence.hpp"

@@ -2,13 +2,13 @@
 // equal end-displacement steps, each solved by adaptive dynamic relaxation warm-started from the
 // secant predictor 2 u_(k-1) - u_(k-2); after each converged step the model's commit (Flanagan-Taylor:
 // pd::LoadStep) and the gauge measurement: P = F/(l1 l3) from the right-grip reaction, the gauge
-// stretches (pd/measure/bar_stretch.hpp), true stress sigma = P/(mu_y mu_z), Hencky equivalent strain,
+// stretches (problems/common/measure/bar_stretch.hpp), true stress sigma = P/(mu_y mu_z), Hencky equivalent strain,
 // beside the closed-form uniaxial curve of reference/uniaxial_stretch at the same gauge stretch.
 #pragma once
-#include "pd/bc/grips.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/measure/bar_sections.hpp"
-#include "pd/measure/bar_stretch.hpp"
+#include "problems/common/grips.hpp"
+#include "pd/core/timer.hpp"
+#include "problems/common/measure/bar_sections.hpp"
+#include "problems/common/measure/bar_stretch.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
 #include "reference/uniaxial_stretch.hpp"
 

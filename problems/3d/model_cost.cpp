@@ -16,10 +16,10 @@
 // limits are not asserted; the report states pass/fail against the targets).
 // Run: model_cost_3d [--n 8] [--steps 200] [--repeats 3] [--threads 1] [--node-matrices] [--quick] [--check] [--out DIR]
 // Writes: summary.csv, runs.csv (per run), timings.csv (per block), params.csv.
-#include "pd/bc/grips.hpp"
+#include "problems/common/grips.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"

@@ -21,7 +21,7 @@
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"

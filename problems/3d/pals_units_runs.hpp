@@ -5,9 +5,9 @@
 // ramp run (velocity Verlet, dt = t_ramp/ceil(t_ramp/(SF dt_crit)), E_end at t_ramp, E_mean over the last
 // quarter of the ramp, energy guard every 1000 steps) and the quasi-static reference E by ADR.
 #pragma once
-#include "pd/bc/grips.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/measure/bar_sections.hpp"
+#include "problems/common/grips.hpp"
+#include "pd/core/timer.hpp"
+#include "problems/common/measure/bar_sections.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
 #include "pd/time/verlet.hpp"

@@ -2,7 +2,7 @@
 // with random critical stretch (Soares 2018; spec/001_004 B.5, V7).
 // Case: disc 76 mm x 3 mm, E 3.3 GPa, nu 0.35, rho 1190 kg/m^3, delta 3.1 mm; points with r >=
 // --r-clamp (32 mm: the ring size is not given, our assumption) are fixed (the source clamps
-// the points touching the ring). Rigid sphere (contact.hpp) of diameter 12.7 mm and mass 18.49 kg
+// the points touching the ring). Rigid sphere (bc/contact.hpp) of diameter 12.7 mm and mass 18.49 kg
 // (the source lumped the mass into the tip) at 1.065 m/s along -z, touching the top layer of
 // points at t = 0, penalty contact, no gravity.
 // s_c ~ N(1.328e-2, 3.32e-3) per node (CoV 25 %), bond rule min, floor 0; clamped points never fail.
@@ -18,14 +18,14 @@
 // Writes: history.csv (impactor z, v, contact force, support reaction, energies, broken bonds),
 // force_window.csv (window means of support and tip forces), damage.csv and damage.vtu (final
 // point damage), summary.csv, params.csv.
-#include "pd/analysis/force_history.hpp"
-#include "pd/contact.hpp"
+#include "problems/common/analysis/force_history.hpp"
+#include "pd/bc/contact.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/io/vtu.hpp"
 #include "pd/models/registry.hpp"
-#include "pd/random_field.hpp"
+#include "pd/core/random_field.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 

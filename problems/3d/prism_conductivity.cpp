@@ -16,8 +16,8 @@
 #include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/timer.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -20,7 +20,7 @@
 #include "pd/io/guarded_main.hpp"
 #include "pd/bc/lateral_images.hpp"
 #include "pd/io/case.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/registry.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"

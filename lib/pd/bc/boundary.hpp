@@ -3,8 +3,8 @@
 // surface tractions applied as body force on a boundary layer of thickness Delta,
 // b = p / Delta (3.28).
 #pragma once
-#include "pd/field.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -4,9 +4,9 @@
 // image's point state (LPS-family m, p_coef, alpha at set-up, theta after each point pass), so
 // the block is a slab cut from an infinite body (problems/3d/wave_block.cpp).
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <vector>
 

@@ -13,10 +13,10 @@
 //          For spec/000c V7 (Si3N4) this gives 8.062e-4 (stress) / 7.853e-4 (strain), not 7.975e-4.
 //   MO 3D  s0 = sqrt(Gc / (3G + (3/4)^4 (K - 5G/3)) / delta)          (Madenci-Oterkus; 000c eq. 8.11)
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
-#include "pd/lattice.hpp"
-#include "pd/material.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/core/material.hpp"
 
 #include <cmath>
 #include <numbers>

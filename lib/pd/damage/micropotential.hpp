@@ -35,11 +35,11 @@
 // (without the bond_work call it runs the model's bond pass once more itself).
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/damage/singular_nodes.hpp"
-#include "pd/field.hpp"
-#include "pd/lattice.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <cmath>
 #include <cstdint>

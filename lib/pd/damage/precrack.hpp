@@ -3,7 +3,7 @@
 // evaluated for (min(i, j), max(i, j)), so i-j and j-i get the same answer bit for bit (a bond
 // through the crack's end point could otherwise differ by round-off and leave a one-sided bond).
 #pragma once
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <algorithm>
 #include <cmath>

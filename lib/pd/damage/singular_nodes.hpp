@@ -8,7 +8,7 @@
 // mark_singular_nodes(model, n, detached) after a force evaluation, then break_detached_bonds
 // before the next one. `detached` is sticky: once detached, a node stays so.
 #pragma once
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 
 #include <cstdint>
 #include <vector>

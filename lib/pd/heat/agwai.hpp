@@ -15,9 +15,9 @@
 // The volumes are the bond volumes of Bonds (partial volumes included).
 // k(theta): conductivity.hpp wraps a model built with k = 1 and scales each bond by its conductivity.
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/influence.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/influence.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <cstdint>
 #include <stdexcept>

@@ -17,9 +17,9 @@
 // theta^(m+1) solves the linear system with A(theta^(m)), until max_i |theta^(m+1) - theta^(m)| <=
 // picard_tol max(1, max_i |theta^(m+1)|) (default 1e-10: with a contraction rate rho <= 1/2 the
 // distance to the fixed point is at most that change); std::runtime_error after picard_max_iter.
-// (CVODE BDF: heat/heat_cvode.hpp.)
+// (CVODE BDF: time/heat_cvode.hpp.)
 #pragma once
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/heat/heat_loop.hpp"
 
 #include <Eigen/Sparse>

@@ -18,10 +18,10 @@
 // range (by the maximum principle, [min, max] of the initial and held temperatures when there is no
 // source), Property::max_over.
 #pragma once
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/properties.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <Eigen/Sparse>
 

@@ -15,10 +15,10 @@
 // k(theta): conductivity.hpp (node i's flux at k(theta_i), the suppression at the bond's k).
 // A node whose K is singular gets K^-1 = 0: no gradient, only the suppression term acts.
 #pragma once
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/heat/agwai.hpp"
-#include "pd/lattice.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>

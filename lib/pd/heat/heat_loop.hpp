@@ -10,8 +10,8 @@
 // A broken bond conducts nothing (multiplied by intact[k]).
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <vector>
 

@@ -19,7 +19,7 @@
 #include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <cstdarg>
 #include <cstdio>

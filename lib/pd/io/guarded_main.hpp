@@ -7,7 +7,7 @@
 //     int main(int argc, char** argv) { return pd::io::guarded_main("bar_modes_1d", [&] { return run(argc, argv); }); }
 #pragma once
 
-#include "pd/errors.hpp"
+#include "pd/core/errors.hpp"
 
 #include <cstdio>
 #include <exception>

@@ -18,7 +18,7 @@
 // line and column parts are left out when they do not apply, e.g. an unreadable file).
 #pragma once
 
-#include "pd/lattice.hpp"
+#include "pd/core/lattice.hpp"
 
 #include <array>
 #include <cstdint>

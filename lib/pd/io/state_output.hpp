@@ -3,7 +3,7 @@
 // v zero beyond the dimension, 17 significant digits) and `state_step<NNNN>.vtu` with a .pvd series, plus
 // the parser of the step list "0,100,400".
 #pragma once
-#include "pd/field.hpp"
+#include "pd/core/field.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/point_cloud.hpp"
 #include "pd/io/vtu.hpp"

@@ -27,21 +27,21 @@
 // Cost (reports/3d/model_cost.md): family sums are lane sums in the bond-loop order; the
 // i-end force P_i K_i^-1 sum_j omega xi V_j is summed once per node (node_force); the bond kernel
 // reads P_j K_j^-1 and F_j (18 values per bond). 3D with AVX2/FMA: vectorised within the bond
-// (correspondence_simd.hpp, `blocks`); undamaged, nodes with translated families (stencil_runs.hpp)
+// (correspondence_simd.hpp, `blocks`); undamaged, nodes with translated families (translated_families.hpp)
 // take both passes W at a time (correspondence_chunks.hpp, `soa`).
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
-#include "pd/influence.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/influence.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/laws/flanagan_taylor.hpp"
-#include "pd/material.hpp"
+#include "pd/core/material.hpp"
 #include "pd/models/correspondence_chunks.hpp"
 #include "pd/models/correspondence_simd.hpp"
 #include "pd/models/pmb.hpp"
-#include "pd/parallel.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <Eigen/Dense>
 
@@ -106,7 +106,7 @@ struct Correspondence {
     std::vector<std::uint8_t> block_read;  // per node: read by the per-node kernels of an undamaged pass
     std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
     static constexpr int BS = detail::correspondence_block;  // doubles per node block (24)
-    // Chunks of translated families (stencil_runs.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
+    // Chunks of translated families (translated_families.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
     // the bond pass and the deformation sums take W nodes at once (correspondence_chunks.hpp), reading
     // A = P K^-1 and F from `soa` (18 arrays of soa_n doubles, written by point_pass).
     StencilRuns runs;

@@ -1,4 +1,4 @@
-// Correspondence kernels for chunks of translated families (3D, no damage; stencil_runs.hpp).
+// Correspondence kernels for chunks of translated families (3D, no damage; translated_families.hpp).
 // W nodes i0 .. i0 + W - 1 (the W lanes of one vector) whose families are translates of i0's: bond
 // r of lane l has partner j_r + l, so node j's values are W contiguous doubles, and xi_r, omega V_r
 // and the hourglass coefficient hg_r are those of the run's template family (TemplateBond, one
@@ -10,13 +10,13 @@
 //                      plus the i-end term P_l K_l^-1 m_xi of the point pass (f_own),
 // with A = P K^-1 and F read from structure-of-arrays copies (entry a + 3 c of node j at
 // soa[(a + 3 c) n + j] for A, soa[(9 + a + 3 c) n + j] for F, stride n = soa_stride(nodes)); W = 8
-// (AVX-512) or 4 (AVX2), chunk_simd.hpp.
+// (AVX-512) or 4 (AVX2), chunk_vector.hpp.
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/chunk_simd.hpp"
-#include "pd/field.hpp"
-#include "pd/parallel.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/simd/chunk_vector.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -30,7 +30,7 @@ namespace pd::detail {
 // values 1.8x slower, measured); 3 lines apart they spread over the sets.
 inline std::size_t soa_stride(std::size_t n) { return (n + 511) / 512 * 512 + 24; }
 
-// One bond of a run's template family (the family of the run's first node t, stencil_runs.hpp):
+// One bond of a run's template family (the family of the run's first node t, translated_families.hpp):
 // what every chunk of the run uses for its bond r (64 bytes, so a bond is one cache line).
 struct alignas(64) TemplateBond {
     double wxi[3];        // omega V_j xi [m^4]

@@ -16,8 +16,8 @@
 // node_share, node_force).
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 
 #include <algorithm>
 #include <cstddef>

@@ -18,8 +18,8 @@
 // Uses only the model's public interface: update_stress, point_pass, bond_force / bond_scalar and
 // the state vectors sigma_hat, R, V. Works with any Model exposing these (D = 3 for Flanagan-Taylor).
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 
 #include <stdexcept>
 #include <type_traits>

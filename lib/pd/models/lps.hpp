@@ -33,17 +33,17 @@
 // a_j = (p_j - alpha_j / D) theta_j and alpha_j precombined by point_pass instead of p_j, theta_j,
 // alpha_j, with no division by D per bond; bond_scalar still
 // reads theta, p_coef and alpha, for callers that edit them between the passes. Nodes with
-// translated families (stencil_runs.hpp: same |xi| and omega V_j bond by bond) take both passes
+// translated families (translated_families.hpp: same |xi| and omega V_j bond by bond) take both passes
 // W nodes at a time in undamaged scenes (dilatation_chunk, Kernel::chunk_scalar): about 1.5x PMB.
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/chunk_simd.hpp"
-#include "pd/field.hpp"
-#include "pd/material.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/simd/chunk_vector.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/material.hpp"
 #include "pd/models/scf.hpp"
-#include "pd/parallel.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <functional>
 #include <stdexcept>
@@ -74,7 +74,7 @@ struct LPS {
     Params::WeightedVolume weighted_volume = Params::WeightedVolume::intact;
     // SCF from positions, re-evaluated by recompute (intact rule); empty for given factors.
     std::function<std::vector<double>(const Bonds&)> scf_source;
-    StencilRuns runs;              // chunks of translated families (stencil_runs.hpp)
+    StencilRuns runs;              // chunks of translated families (translated_families.hpp)
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)

@@ -28,18 +28,18 @@
 // Multipliers use the intact bonds; after damage call recompute(bonds) (Explicit does it whenever
 // bonds break, time/verlet.hpp): the damaged body is then the body built without the broken bonds
 // (tests/test_damage_models.cpp). Before recompute the multipliers are those of the old families.
-// Cost: nodes with translated families (stencil_runs.hpp: same |xi|, w_i, w_j, s_i, s_j bond by
+// Cost: nodes with translated families (translated_families.hpp: same |xi|, w_i, w_j, s_i, s_j bond by
 // bond, found by recompute) take both passes W nodes at a time in undamaged scenes.
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/chunk_simd.hpp"
-#include "pd/field.hpp"
-#include "pd/influence.hpp"
-#include "pd/lattice.hpp"
-#include "pd/material.hpp"
-#include "pd/parallel.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/simd/chunk_vector.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/influence.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/core/material.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <array>
 #include <vector>

@@ -13,14 +13,14 @@
 // Hourglass control (C_hg) acts as in the elastic model. History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 #include "pd/laws/elastic.hpp"
 #include "pd/laws/j2.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/plastic_points.hpp"
-#include "pd/parallel.hpp"
-#include "pd/time/stiffness_bound.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/models/stiffness_bound.hpp"
 
 #include <stdexcept>
 #include <vector>

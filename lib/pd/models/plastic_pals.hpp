@@ -18,12 +18,12 @@
 // History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/plastic_points.hpp"
-#include "pd/parallel.hpp"
-#include "pd/time/stiffness_bound.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/models/stiffness_bound.hpp"
 
 #include <algorithm>
 #include <cmath>

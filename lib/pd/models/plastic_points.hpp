@@ -9,8 +9,8 @@
 // the heat source of a thermo-mechanical scene (heat_source, after point_pass).
 // Also the trial deviatoric bond extension e_de of the two ordinary models (LPS, PALS).
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 #include "pd/laws/j2.hpp"
 #include "pd/laws/johnson_cook.hpp"
 

@@ -9,16 +9,16 @@
 // reproduces W = (D^2/2) kappa_D s^2 exactly; `continuum` (default) is the published constant.
 // Damage: a broken bond carries no force (bond_loop.hpp) and PMB has no per-node constant, so a
 // damaged body is exactly the body built without the broken bonds (tests/test_damage_models.cpp).
-// Cost: nodes with translated families (stencil_runs.hpp: same |xi| and coef bond by bond) take
+// Cost: nodes with translated families (translated_families.hpp: same |xi| and coef bond by bond) take
 // the chunk path of the bond loop, W nodes at a time (chunk_scalar). Change coef only through
 // scale_bonds, which finds the runs again.
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/chunk_simd.hpp"
-#include "pd/field.hpp"
-#include "pd/material.hpp"
-#include "pd/parallel.hpp"
-#include "pd/stencil_runs.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/simd/chunk_vector.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/material.hpp"
+#include "pd/core/parallel.hpp"
+#include "pd/simd/translated_families.hpp"
 
 #include <stdexcept>
 #include <vector>

@@ -14,10 +14,10 @@
 // name, or a model that does not exist in dimension D, throws std::invalid_argument naming it
 // (exit status 2 through guarded_main).
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/influence.hpp"
-#include "pd/lattice.hpp"
-#include "pd/material.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/influence.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/core/material.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"

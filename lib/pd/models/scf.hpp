@@ -31,9 +31,9 @@
 // intact_m = true (LPS's default intact rule, lps.hpp). 1D has no deviatoric part (a_1 = 0): SCF = 1.
 // A node whose N_max is 0 (no intact bond, or m_i = 0) gets SCF = 1.
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>

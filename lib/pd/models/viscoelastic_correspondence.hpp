@@ -20,13 +20,13 @@
 // enters only the Maxwell branch.
 // Uses only the public members of Correspondence<3>; it does not copy its loops.
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 #include "pd/laws/elastic.hpp"
 #include "pd/laws/maxwell.hpp"
 #include "pd/models/correspondence.hpp"
 #include "pd/models/load_step.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <stdexcept>
 #include <vector>

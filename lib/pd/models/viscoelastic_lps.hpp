@@ -20,11 +20,11 @@
 // Dissipation (7.10): the energy dissipated by the dashpots of node i over the trial step [J/m^3],
 //   D_i = sum_k (alpha_b,i omega V_j / tau_b) int (e_d - e_db)^2 dt   (laws/maxwell.hpp, exact per step).
 #pragma once
-#include "pd/bonds.hpp"
-#include "pd/field.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
 #include "pd/laws/maxwell.hpp"
 #include "pd/models/lps.hpp"
-#include "pd/parallel.hpp"
+#include "pd/core/parallel.hpp"
 
 #include <cmath>
 #include <stdexcept>

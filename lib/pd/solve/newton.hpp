@@ -14,7 +14,7 @@
 #pragma once
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
-#include "pd/io/timer.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/rate_form.hpp"
 #include "pd/solve/linear_solver.hpp"
 #include "pd/solve/tangent.hpp"

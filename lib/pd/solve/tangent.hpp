@@ -27,8 +27,8 @@
 // Damage: broken bonds stay in the graph (a superset of the true pattern: safe).
 #pragma once
 #include "pd/bond_loop.hpp"
-#include "pd/bonds.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/models/pmb.hpp"
 
 #include <Eigen/Sparse>

@@ -6,7 +6,7 @@
 //   CFL (3.15): dt = h / c_wave, conservative with h = dx, unconservative with h = delta.
 // The run uses dt = safety * dt_crit; the source's normal safety factor is 0.5.
 #pragma once
-#include "pd/bonds.hpp"
+#include "pd/core/bonds.hpp"
 
 #include <cmath>
 #include <limits>

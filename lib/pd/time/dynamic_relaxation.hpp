@@ -27,10 +27,10 @@
 #pragma once
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
-#include "pd/io/timer.hpp"
-#include "pd/lattice.hpp"
+#include "pd/core/timer.hpp"
+#include "pd/core/lattice.hpp"
 #include "pd/models/rate_form.hpp"
-#include "pd/time/stiffness_bound.hpp"  // the diagonal densities
+#include "pd/models/stiffness_bound.hpp"  // the diagonal densities
 
 #include <algorithm>
 #include <cmath>

@@ -22,7 +22,7 @@
 // (= v_{n+1/2}), as that header prescribes (exactly skew L for a rigid rotation). start() takes the
 // state from the reference (u = 0) to the initial u in one pseudo step dt = 1 (the update depends on
 // v dt only), as LoadStep from y0 = x does; so the model's state must belong to the reference then.
-// Extra force hook (contact.hpp: contact, impactors): extra_force(t, y, v, b) adds a body-force
+// Extra force hook (bc/contact.hpp: contact, impactors): extra_force(t, y, v, b) adds a body-force
 // density [N/m^3] to b after the boundary's body forces (v is the half-step velocity there); its
 // work enters the external work like any body force. Empty: nothing is called.
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
@@ -34,7 +34,7 @@
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
 #include "pd/damage/singular_nodes.hpp"
-#include "pd/errors.hpp"
+#include "pd/core/errors.hpp"
 #include "pd/kernel_concepts.hpp"
 #include "pd/models/rate_form.hpp"
 

@@ -1,0 +1,106 @@
+// CSR bond families (bonds.hpp) from the neighbour search of neighbors.hpp.
+#include "pd/core/bonds.hpp"
+#include "pd/core/neighbors.hpp"
+#include "pd/core/partial_area.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace pd {
+
+PartialVolume parse_partial_volume(const std::string& name)
+{
+    if (name == "none") return PartialVolume::none;
+    if (name == "pa-pdlammps") return PartialVolume::pa_pdlammps;
+    if (name == "exact-area") return PartialVolume::exact_area;
+    throw std::invalid_argument("unknown partial-volume option '" + name + "' (none, pa-pdlammps, exact-area)");
+}
+
+template <int D>
+Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
+{
+    if (!(delta > 0)) throw std::invalid_argument("horizon delta must be positive");
+    const std::size_t n = body.size();
+    Bonds b;
+    b.delta = delta;
+    b.offset.assign(n + 1, 0);
+    if (n == 0) return b;
+    const bool exact = opt.partial_volume == PartialVolume::exact_area;
+    if (opt.partial_volume != PartialVolume::none && !(body.dx > 0))
+        throw std::invalid_argument("partial volumes need a lattice spacing (dx > 0)");
+    if (exact && D != 2) throw std::invalid_argument("exact-area partial volumes are for 2D lattices only");
+    if (exact && opt.influence.kind != Influence::Kind::one && opt.influence.kind != Influence::Kind::inv_xi)
+        throw std::invalid_argument("exact-area partial volumes need an influence function defined beyond delta (one, inv_xi)");
+    // Search reach: delta, or (exact-area) the farthest cell corner the horizon can touch.
+    const double reach = (exact ? delta + body.dx * std::sqrt(0.5) : delta) * (1 + horizon_roundoff);
+
+    // 1. Candidates by cell lists (neighbors.hpp), cells a little wider than the search reach. With
+    // side exactly delta, lattice points at exactly delta (integer m) sit on cell faces and
+    // round-off in (x - lo)/side can put two neighbours two cells apart (bond lost).
+    const double cell = reach * (1 + 1e-6);  // 1e-6 >> horizon_roundoff and index round-off
+    const NeighborLists near = neighbor_lists(body.x, cell, [&](int i, int j) {
+        return norm(body.x[j] - body.x[i]) <= reach && (!opt.keep || opt.keep(i, j));
+    });
+
+    // 2. Families, sorted by partner index for locality.
+    const double h = body.dx;
+    const double ca = std::cos(opt.lattice_angle), sa = std::sin(opt.lattice_angle);
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec<D> xi = body.x[i];
+        for (std::int64_t q = near.offset[i]; q < near.offset[i + 1]; ++q) {
+            const int j = near.partner[q];
+            const double r = norm(body.x[j] - xi);
+            if (r == 0) throw std::invalid_argument("duplicate points " + std::to_string(i) + " and " + std::to_string(j));
+            double beta = 1;
+            if (opt.partial_volume == PartialVolume::pa_pdlammps && r > delta - h / 2)
+                beta = std::min(1.0, (delta + h / 2 - r) / h);  // spec/002 sec. 3.2, PA-PDLAMMPS
+            if constexpr (D == 2)
+                if (exact && r > delta - h * std::sqrt(0.5)) {  // cells nearer lie wholly inside
+                    const Vec<2> e = body.x[j] - xi;  // in the lattice's axes, folded (the area is symmetric) so that beta_ij == beta_ji
+                    const Vec<2> u{{std::abs(ca * e[0] + sa * e[1]), std::abs(-sa * e[0] + ca * e[1])}};
+                    beta = cell_fraction_in_horizon(u, delta, h);
+                    if (!(beta > 1e-12)) continue;  // corner outside, or inside by round-off only
+                }
+            b.partner.push_back(j);
+            b.length.push_back(r);
+            b.omega.push_back(opt.influence(r, delta));
+            b.volume.push_back(beta * body.volume[j]);
+        }
+        b.offset[i + 1] = static_cast<std::int64_t>(b.partner.size());
+    }
+
+    // 3. Reverse-bond index: families are sorted by partner, so j->i is found by binary search.
+    b.reverse.resize(b.size());
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::int64_t k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+            const int j = b.partner[k];
+            auto first = b.partner.begin() + b.offset[j], last = b.partner.begin() + b.offset[j + 1];
+            auto it = std::lower_bound(first, last, static_cast<int>(i));
+            if (it == last || *it != static_cast<int>(i))
+                throw std::logic_error("bond family is not symmetric (keep filter must be symmetric)");
+            b.reverse[k] = it - b.partner.begin();
+        }
+    return b;
+}
+
+std::vector<std::array<long, 3>> full_family_offsets(double delta, double dx, int dim)
+{
+    const double reach = delta * (1 + horizon_roundoff);
+    const long M = static_cast<long>(std::floor(reach / dx));
+    std::vector<std::array<long, 3>> offsets;
+    for (long a = -M; a <= M; ++a)
+        for (long b = (dim > 1 ? -M : 0); b <= (dim > 1 ? M : 0); ++b)
+            for (long c = (dim > 2 ? -M : 0); c <= (dim > 2 ? M : 0); ++c) {
+                const long n2 = a * a + b * b + c * c;
+                if (n2 > 0 && dx * std::sqrt(double(n2)) <= reach) offsets.push_back({a, b, c});
+            }
+    return offsets;
+}
+
+template Bonds build_bonds<1>(const Body<1>&, double, const BondOptions&);
+template Bonds build_bonds<2>(const Body<2>&, double, const BondOptions&);
+template Bonds build_bonds<3>(const Body<3>&, double, const BondOptions&);
+
+}  // namespace pd

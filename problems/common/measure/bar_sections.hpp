@@ -1,0 +1,84 @@
+// problems/common/measure/bar_sections.hpp -- cross-section measurements on the gripped bar specimens
+// (pd::gripped_bar: x axial, bar [0, L] x [0, W] x [0, T], lattice dx, grips outside both ends).
+//
+// Gauge (seed 000b sec. 4.7, eq. 4.37; spec/000b sec. 5.2): the strain is measured between the two
+// lattice layers nearest x = L/2 - delta and x = L/2 + delta, away from the grips' end effects:
+//   layer(x) = round(x/dx - 1/2) (cell index of a node at the cell centre (k + 1/2) dx),
+//   a = layer(L/2 - delta), b = layer(L/2 + delta), both clamped to [0, nx - 1], nx = round(L/dx),
+//   gauge length dist = (b - a) dx, eps = (mean u_x over layer b - mean u_x over layer a) / dist.
+// Stress: sigma = F / (W T), F = -sum_{i in grip} f_x,i V_i the axial reaction of a grip (f: the
+// internal force density [N/m^3], so -f V is the force the grip holds the node with).
+// Lateral stretch of a section: the least-squares slope of the deformed against the reference
+// coordinate, mu_d = cov(x_d, x_d + u_d) / var(x_d).
+// Node sets come in node order and every sum runs in that order (results reproducible bit for bit).
+#pragma once
+
+#include "pd/core/field.hpp"
+#include "pd/core/lattice.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace pd {
+
+struct BarGauge {
+    NodeSet sec_a, sec_b;  // nodes of the layers nearest L/2 - delta and L/2 + delta
+    NodeSet mid;           // nodes of the mid-length layer(s): one for odd nx, the two central ones for even nx
+    double dist = 0;       // gauge length (b - a) dx [m]; 0 when both gauge points fall in one layer
+};
+
+// Layer index of a node at axial coordinate x [m] on the lattice dx [m].
+inline long bar_layer(double x, double dx) { return std::lround(x / dx - 0.5); }
+
+// The gauge layers of a bar of length L [m] on lattice dx [m] for horizon delta [m] (nodes of
+// `body` outside [0, L], the grips, belong to no layer).
+inline BarGauge bar_gauge(const Body<3>& body, double L, double dx, double delta)
+{
+    BarGauge g;
+    const long nx = std::lround(L / dx);
+    const long a = std::clamp(bar_layer(L / 2 - delta, dx), 0L, nx - 1);
+    const long b = std::clamp(bar_layer(L / 2 + delta, dx), 0L, nx - 1);
+    g.dist = (b - a) * dx;
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        const long layer = bar_layer(body.x.c[0][i], dx);
+        if (layer == a) g.sec_a.push_back(static_cast<int>(i));
+        if (layer == b) g.sec_b.push_back(static_cast<int>(i));
+        if (layer == (nx - 1) / 2 || layer == nx / 2) g.mid.push_back(static_cast<int>(i));
+    }
+    return g;
+}
+
+// True when node i lies within `tol` [m] of the bar axis (y, z) = (W/2, T/2) in both y and z.
+inline bool near_bar_axis(const Body<3>& body, int i, double W, double T, double tol)
+{
+    return std::abs(body.x.c[1][i] - W / 2) < tol && std::abs(body.x.c[2][i] - T / 2) < tol;
+}
+
+// Axial reaction of a grip [N]: F = -sum f_x V over its nodes (f: internal force density [N/m^3]).
+inline double axial_reaction(const Field<3>& f, const Body<3>& body, const NodeSet& grip)
+{
+    double F = 0;
+    for (int i : grip) F -= f.c[0][i] * body.volume[i];
+    return F;
+}
+
+// Mean axial displacement u_x over a node set [m].
+inline double mean_axial_displacement(const Field<3>& u, const NodeSet& set)
+{
+    double m = 0;
+    for (int i : set) m += u.c[0][i];
+    return m / set.size();
+}
+
+// Least-squares slope of the deformed coordinate x_d + u_d against x_d over `set` (lateral stretch).
+inline double lateral_stretch(const Field<3>& x, const Field<3>& u, const NodeSet& set, int d)
+{
+    double xm = 0, ym = 0, sxx = 0, sxy = 0;
+    for (int i : set) xm += x.c[d][i], ym += x.c[d][i] + u.c[d][i];
+    xm /= set.size(), ym /= set.size();
+    for (int i : set) sxx += (x.c[d][i] - xm) * (x.c[d][i] - xm), sxy += (x.c[d][i] - xm) * (x.c[d][i] + u.c[d][i] - ym);
+    return sxy / sxx;
+}
+
+}  // namespace pd
