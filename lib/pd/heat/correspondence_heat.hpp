@@ -13,10 +13,11 @@
 //   (g exact, hourglass term 0) at every node with an invertible K; Q = k lap(theta) in the interior
 //   for quadratic fields. The operator is linear in theta: add_operator() gives its matrix exactly.
 // k(theta): conductivity.hpp (node i's flux at k(theta_i), the suppression at the bond's k).
-// A node whose K is singular gets K^-1 = 0: no gradient, only the suppression term acts.
+// A node whose K is singular (models/shape_tensor.hpp) gets K^-1 = 0: no gradient, only the suppression term acts.
 #pragma once
 #include "pd/core/bonds.hpp"
 #include "pd/heat/agwai.hpp"
+#include "pd/models/shape_tensor.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/core/parallel.hpp"
 
@@ -68,11 +69,7 @@ struct CorrespondenceHeat {
     void shape_tensors(const Bonds& b)
     {
         parallel_for(b.nodes(), [&](std::size_t i) {
-            Mat K = Mat::Zero();
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-                if (intact(b, k)) K += b.omega[k] * b.volume[k] * xi(i, b.partner[k]) * xi(i, b.partner[k]).transpose();
-            const double scale = K.trace() / D;
-            Kinv[i] = scale > 0 && std::abs(K.determinant()) > 1e-12 * std::pow(scale, D) ? Mat(K.inverse()) : Mat::Zero();
+            Kinv[i] = inverse_or_zero(shape_tensor(b, x, i));  // models/shape_tensor.hpp
         });
     }
 

@@ -11,6 +11,7 @@
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
+#include "pd/models/shape_tensor.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -167,7 +168,7 @@ inline Field<3> stiffness_bound(const PALS& model, const Bonds& b, const Field<3
 // plus the Littlewood term linearised, c_hg V_k/|xi| ((2 d eta - (dF_i + dF_j) xi).n) n, with
 // |g_il.xi_k| <= |g_il| |xi_k| and Sg_i = sum_l |g_il|:
 //        + sum_k c_hg V_k |n_a| ||n||_1 (4/|xi_k| + 2 (Sg_i + Sg_j)).
-// K_i^-1 = 0 where K_i is singular, with the model's rule (|det| <= 1e-12 (tr K / D)^D).
+// K_i^-1 = 0 where K_i is singular, with the rule of models/shape_tensor.hpp.
 template <int D>
 Field<D> stiffness_bound(const Correspondence<D>& model, const Bonds& b, const Field<D>& x)
 {
@@ -190,11 +191,8 @@ Field<D> stiffness_bound(const Correspondence<D>& model, const Bonds& b, const F
     std::vector<Col> h(nn, Col::Zero()), S(nn, Col::Zero());
     std::vector<double> S1(nn, 0.0), Sg(nn, 0.0);
     for (std::size_t i = 0; i < nn; ++i) {
-        Mat K = Mat::Zero();
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-            if (intact(k)) K += b.omega[k] * b.volume[k] * xi(i, b.partner[k]) * xi(i, b.partner[k]).transpose();
-        const double scale = K.trace() / D;
-        if (!(scale > 0) || !(std::abs(K.determinant()) > 1e-12 * std::pow(scale, D))) continue;
+        const Mat K = shape_tensor(b, x, i);
+        if (!shape_tensor_regular(K)) continue;
         Kinv[i] = K.inverse();
         for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
             if (!intact(k)) continue;
