@@ -1,20 +1,23 @@
-// Shear correction factor (models/scf.hpp) and LPS with SCF (spec/000b sec. 1.3, V12).
-// References: lattice sums over integer offsets written out here, and Gauss-Legendre quadrature
-// of N over a continuum ball/disc; neither calls the code under test.
+// Shear correction factor (models/scf.hpp; spec/000b sec. 1.3, V12); LPS with SCF: test_lps_scf.cpp.
+// References: lattice sums over integer offsets written out in scf_fixtures.hpp, and Gauss-Legendre
+// quadrature of N over a continuum ball/disc; neither calls the code under test.
 #include "pd/bond_loop.hpp"
-#include "pd/models/lps.hpp"
 #include "pd/models/scf.hpp"
 
 #include <gtest/gtest.h>
+
+#include "scf_fixtures.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
-#include <random>
+#include <stdexcept>
+#include <vector>
 
 using namespace pd;
+using namespace pd_test::scf_fixtures;
 constexpr double pi = std::numbers::pi;
 
 namespace {
@@ -35,45 +38,6 @@ std::vector<std::array<double, 2>> gauss(int n, double lo, double hi)
         q.push_back({0.5 * (lo + hi) + 0.5 * (hi - lo) * z, (hi - lo) / ((1 - z * z) * dp * dp)});
     }
     return q;
-}
-
-// Lattice SCF of a node whose family is the integer offsets n (0 < |n| <= 3, full volumes,
-// omega = 1, lengths in dx) that pass `keep` (the node's position in a box), written out from
-// the linearised probe: per shear (a, c), e = 2 n_a n_c / |n| (per gamma), theta = (D/m)
-// sum |n| e, N = sum (e - theta |n| / D)^2; SCF = 4 m / (a_D max N).
-template <int D>
-double lattice_scf(const std::function<bool(const std::array<int, 3>&)>& keep = {})
-{
-    std::vector<std::array<int, 3>> fam;
-    for (int p = -3; p <= 3; ++p)
-        for (int q = -3; q <= 3; ++q)
-            for (int r = (D == 3 ? -3 : 0); r <= (D == 3 ? 3 : 0); ++r) {
-                const int n2 = p * p + q * q + r * r;
-                if (n2 > 0 && n2 <= 9 && (!keep || keep({p, q, r}))) fam.push_back({p, q, r});
-            }
-    double m = 0;
-    for (const auto& n : fam) m += n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const int planes[3][2] = {{0, 1}, {2, 0}, {1, 2}};
-    double N_max = 0;
-    for (int md = 0; md < (D == 3 ? 3 : 1); ++md) {
-        const int a = planes[md][0], c = planes[md][1];
-        double sth = 0, N = 0;
-        for (const auto& n : fam) sth += 2.0 * n[a] * n[c];  // |n| e
-        for (const auto& n : fam) {
-            const double L = std::sqrt(double(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
-            N += std::pow(2.0 * n[a] * n[c] / L - sth / m * L, 2);  // theta |n| / D = (sth/m) |n|
-        }
-        N_max = std::max(N_max, N);
-    }
-    return 4 * m / ((D == 3 ? 15.0 : 8.0) * N_max);
-}
-
-template <int D>
-Field<D> sheared(const Body<D>& body, int a, int c, double g)  // y_a = x_a + g x_c, y_c = x_c + g x_a
-{
-    Field<D> y = body.x;
-    for (std::size_t i = 0; i < body.size(); ++i) { y.c[a][i] += g * body.x.c[c][i]; y.c[c][i] += g * body.x.c[a][i]; }
-    return y;
 }
 }  // namespace
 
@@ -202,110 +166,4 @@ TEST(SCF, DamageAndThreads)
         if (body.x.c[0][b.partner[k]] > body.x.c[0][mid]) b.break_pair(k);
     EXPECT_GT(shear_correction_factor(b, body.x, 3)[mid], s1[mid]);
     EXPECT_THROW(shear_correction_factor(b, body.x, 2), std::invalid_argument);  // dim != D
-}
-
-// LPS with SCF under pure shear at a bulk node: classical W = G eps:eps = 2 G gamma^2 for
-// eps_ab = eps_ba = gamma. Plain LPS gives 2 G gamma^2 / SCF_bulk (3D: 131/118 = 1.1102, 2D:
-// 82/85 = 0.9647); with SCF it gives 2 G gamma^2 in all three coordinate shears (all equal on
-// the cubic lattice by symmetry). The rotated shear diag(a, -a, 0) (classical also 2 G a^2) is a
-// different cubic mode: ratio 15 T / (4 m) * SCF with T = sum (p^2 - q^2)^2 / |n|^2 = 157.6,
-// 0.8347 plain and 0.7519 corrected: the SCF fixes the probed shear family, not the cubic
-// anisotropy of the lattice. Tolerance 1e-5: O(gamma) nonlinearity, theta = O(gamma^2).
-TEST(LPS_SCF, PureShearEnergyBecomesClassical)
-{
-    const double dx = 1e-3, g = 1e-6;
-    const Elastic mat = Elastic::from_E_nu(200e9, 0.3);
-    auto body = box<3>({{0, 0, 0}}, {{7 * dx, 7 * dx, 7 * dx}}, dx);
-    Bonds b = build_bonds(body, 3 * dx);
-    const int mid = 3 + 3 * 7 + 3 * 49;
-    LPS plain({mat, 3}, b), corr({mat, 3}, b);
-    corr.apply_shear_correction(body.x);
-    const double W_cl = 2 * mat.G * g * g, scf_ref = lattice_scf<3>();
-    const int modes[3][2] = {{0, 1}, {2, 0}, {1, 2}};
-    for (const auto& md : modes) {
-        const Field<3> y = sheared(body, md[0], md[1], g);
-        plain.point_pass(b, y);
-        corr.point_pass(b, y);
-        EXPECT_NEAR(plain.energy_density(b, y)[mid] / W_cl, 1 / scf_ref, 1e-5);
-        EXPECT_NEAR(corr.energy_density(b, y)[mid] / W_cl, 1.0, 1e-5);
-    }
-    Field<3> y = body.x;
-    for (std::size_t i = 0; i < body.size(); ++i) { y.c[0][i] *= 1 + g; y.c[1][i] *= 1 - g; }
-    plain.point_pass(b, y);
-    corr.point_pass(b, y);
-    const double T = 157.6, m = 708;  // lattice sums over the 122 offsets (cf. lattice_scf)
-    EXPECT_NEAR(plain.energy_density(b, y)[mid] / W_cl, 15 * T / (4 * m), 1e-5);
-    EXPECT_NEAR(corr.energy_density(b, y)[mid] / W_cl, 15 * T / (4 * m) * scf_ref, 1e-5);
-
-    auto body2 = box<2>({{0, 0}}, {{7 * dx, 7 * dx}}, dx, 1e-3);
-    Bonds b2 = build_bonds(body2, 3 * dx);
-    LPS plain2({mat, 2, Plane::strain}, b2), corr2({mat, 2, Plane::strain}, b2);
-    corr2.apply_shear_correction(body2.x);
-    const Field<2> y2 = sheared(body2, 0, 1, g);
-    plain2.point_pass(b2, y2);
-    corr2.point_pass(b2, y2);
-    EXPECT_NEAR(plain2.energy_density(b2, y2)[3 + 3 * 7] / W_cl, 82.0 / 85.0, 1e-5);
-    EXPECT_NEAR(corr2.energy_density(b2, y2)[3 + 3 * 7] / W_cl, 1.0, 1e-5);
-}
-
-// Off is the old model: alpha is the old a_D G / m_i (written out here), and SCF = 1 everywhere
-// gives bit-identical alpha, forces and energies.
-TEST(LPS_SCF, UnitFactorIsBitIdenticalToNoCorrection)
-{
-    const double dx = 1e-3;
-    auto body = fill<3>({{0, 0, 0}}, {{8 * dx, 7 * dx, 6 * dx}}, dx, in_ball<3>({{4 * dx, 3.5 * dx, 3 * dx}}, 3.6 * dx));
-    Bonds b = build_bonds(body, 3.05 * dx);
-    const Elastic mat = Elastic::from_E_nu(200e9, 0.3);
-    LPS off({mat, 3}, b), one({mat, 3}, b);
-    one.apply_shear_correction(std::vector<double>(body.size(), 1.0));
-    EXPECT_TRUE(off.scf.empty());
-    for (std::size_t i = 0; i < body.size(); ++i) EXPECT_EQ(off.alpha[i], 15.0 * mat.G * (1.0 / off.m[i]));
-    EXPECT_EQ(off.alpha, one.alpha);
-    std::mt19937 gen(11);
-    std::uniform_real_distribution<double> U(-1e-5, 1e-5);
-    Field<3> y = body.x;
-    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
-    Field<3> f_off, f_one;
-    internal_force(off, b, y, f_off);
-    internal_force(one, b, y, f_one);
-    for (int d = 0; d < 3; ++d) EXPECT_EQ(f_off.c[d], f_one.c[d]);
-    EXPECT_EQ(off.energy_density(b, y), one.energy_density(b, y));
-    EXPECT_THROW(one.apply_shear_correction(std::vector<double>(3, 1.0)), std::invalid_argument);
-}
-
-// With a non-uniform SCF the force is still minus the gradient of E = sum_i W_i V_i (alpha_i
-// enters W_i and t_i alike): central differences at a corner and a bulk node of a small box.
-// Tolerance 1e-6 of |f_i V_i| (a small component alone can lose digits): step h = 1e-9 m against
-// displacements 1e-8 m; observed differences ~1e-8 with and without SCF.
-TEST(LPS_SCF, ForceIsEnergyGradientWithNonUniformSCF)
-{
-    const double dx = 1e-3, h = 1e-9;
-    auto body = box<3>({{0, 0, 0}}, {{6 * dx, 6 * dx, 6 * dx}}, dx);
-    Bonds b = build_bonds(body, 3 * dx);
-    const Elastic mat = Elastic::from_E_nu(200e9, 0.3);
-    LPS lps({mat, 3}, b);
-    lps.apply_shear_correction(body.x);
-    std::mt19937 gen(5);
-    std::uniform_real_distribution<double> U(-1e-8, 1e-8);
-    Field<3> y = body.x;
-    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
-    auto total = [&](const Field<3>& yy) {
-        lps.point_pass(b, yy);
-        const auto W = lps.energy_density(b, yy);
-        double E = 0;
-        for (std::size_t i = 0; i < body.size(); ++i) E += W[i] * body.volume[i];
-        return E;
-    };
-    Field<3> f;
-    internal_force(lps, b, y, f);
-    for (int node : {0, 2 + 2 * 6 + 3 * 36}) {
-        const double scale = norm(f[node]) * body.volume[node];
-        for (int d = 0; d < 3; ++d) {
-            Field<3> yp = y, ym = y;
-            yp.c[d][node] += h;
-            ym.c[d][node] -= h;
-            const double dE = (total(yp) - total(ym)) / (2 * h);
-            EXPECT_NEAR(-f.c[d][node] * body.volume[node], dE, 1e-6 * scale) << "node " << node << " dir " << d;
-        }
-    }
 }
