@@ -22,19 +22,7 @@
 namespace fs = std::filesystem;
 using pd::io::read_csv;
 
-namespace {
-
-using pd_test::base;
-using pd_test::lattice_csv;
-using pd_test::num;
-using pd_test::pd_run;
-using pd_test::Result;
-using pd_test::slurp;
-using pd_test::steel;
-using pd_test::write_file;
-
-
-}  // namespace
+using namespace pd_test;  // the harness: pd_run, lattice_csv, write_file, steel, ...
 
 // Reader: all columns, comments, CRLF, blanks; absent columns default; fields land in file order.
 TEST(PointCloud, ReadsColumnsInAnyOrder)

@@ -15,16 +15,7 @@
 namespace fs = std::filesystem;
 using pd::io::read_csv;
 
-namespace {
-
-using pd_test::base;
-using pd_test::pd_run;
-using pd_test::Result;
-using pd_test::slurp;
-using pd_test::steel;
-using pd_test::write_file;
-
-}  // namespace
+using namespace pd_test;  // the harness: pd_run, lattice_csv, write_file, steel, ...
 
 // File names, headers, 17 significant digits, node ids; energy rows at 0, k, 2k, ... and the last
 // step; VTU snapshots with their .pvd.
