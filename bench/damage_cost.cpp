@@ -109,8 +109,8 @@ struct Run {
         mp.w_c = pd::w_critical(Jc_si3n4, s.delta);
         cs.protect(s.protect, s.body.size());
         mp.protect(s.protect, s.body.size());
-        if (micro) ex->micropotential = &mp;
-        else ex->damage = &cs;
+        if (micro) ex->scene.set_damage(mp);
+        else ex->scene.set_damage(cs);
         for (std::size_t i = 0; i < s.body.size(); ++i) ex->u.c[1][i] = s.strain * (s.body.x.c[1][i] - 0.5 * side);
         for (int d = 0; d < 3; ++d)
             for (const pd::NodeSet* grip : {&s.bottom, &s.top}) {
@@ -211,7 +211,7 @@ int main(int argc, char** argv)
             l = measure<C>(s, [&](const pd::Bonds& b) { return std::make_unique<C>(C::Params{s.mat, C::Law::linear, C_hg}, s.body, b); },
                            block, blocks);
         } else {
-            l = measure<pd::PMB>(s, [&](const pd::Bonds& b) { return std::make_unique<pd::PMB>(pd::PMB::Params{s.mat, 3}, pd::Influence{}, b); },
+            l = measure<pd::PMB>(s, [&](const pd::Bonds& b) { return std::make_unique<pd::PMB>(pd::PMB::Params{s.mat, 3}, b); },
                                  block, blocks);
         }
         std::printf("%s,%zu,%zu,%d,%d,%d,%.4e,%.4e,%.4f,%.4f,%.4f,%ld,%ld,%.2f,%.2f\n", name.c_str(), s.body.size(), l.bonds, threads, block,

@@ -171,7 +171,7 @@ int main(int argc, char** argv)
     auto bench = [&](auto& model, int t) { return run(s, model, what, steps, repeat, t); };
     auto measure = [&](int t) {
         if (model_name == "pmb") {
-            pd::PMB model(pd::PMB::Params{.material = material}, pd::Influence{}, s.bonds);
+            pd::PMB model(pd::PMB::Params{.material = material}, s.bonds);
             return bench(model, t);
         }
         if (model_name == "correspondence") {

@@ -63,7 +63,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
 
     // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too).
     const pd::PMB::Params pmb{.material = cfg.material, .dim = D, .plane = cfg.plane, .measure = cfg.measure};
-    const double c = pd::PMB::micromodulus(pmb, cfg.influence, cfg.delta);
+    const double c = pd::PMB::micromodulus(pmb, bonds.influence, bonds.delta);
     const pd::CriticalStep crit = pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), cfg.rho), c);
     if (std::isnan(cfg.dt)) {
         if (!std::isfinite(crit.dt)) fail("option --dt is required: no point has a bond within --delta");
@@ -78,7 +78,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     // The model by name (models/registry.hpp); the surface correction of PMB (reference: its own
     // bulk energy) or LPS (reference: the classical energy); none: no change.
     const pd::ModelChoice choice{.name = cfg.model, .material = cfg.material, .plane = cfg.plane, .measure = cfg.measure,
-                                 .C_hg = cfg.hourglass, .influence = cfg.influence};
+                                 .C_hg = cfg.hourglass};
     return pd::with_model(choice, body, bonds, [&](auto& model) {
         using Model = std::decay_t<decltype(model)>;
         if constexpr (std::is_same_v<Model, pd::PMB>) pd::apply_surface_correction(model, body, bonds, cfg.surface);

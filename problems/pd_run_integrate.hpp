@@ -7,6 +7,7 @@
 #include "pd/io/point_cloud.hpp"
 #include "pd/io/state_output.hpp"
 #include "pd/core/timer.hpp"
+#include "pd/damage/critical_stretch.hpp"
 #include "pd/core/material.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/time/verlet.hpp"
@@ -123,7 +124,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     pd::CriticalStretch damage;  // bond breaking, only with --s0
     damage.s0 = cfg.s0;
     if (pc.no_fail_count() > 0) damage.no_fail = pc.no_fail;
-    if (cfg.s0 > 0) sim.damage = &damage;
+    if (cfg.s0 > 0) sim.scene.set_damage(damage);
     sim.start();
     auto thermal_target = [&](long n) { return heat ? long(std::floor(double(n) * cfg.dt / heat->dt * (1 + 1e-12))) : 0L; };
     const long thermal_total = thermal_target(cfg.steps);

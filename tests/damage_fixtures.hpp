@@ -202,7 +202,7 @@ void expect_cut_halves_independent(const Body<D>& body, Make make)
 
 inline auto make_pmb(int dim)
 {
-    return [dim](const auto& body, const Bonds& b) { return PMB({steel, dim, Plane::stress, body.measure}, Influence{}, b); };
+    return [dim](const auto& body, const Bonds& b) { return PMB({steel, dim, Plane::stress, body.measure}, b); };
 }
 inline auto make_lps(int dim, LPS::Params::WeightedVolume rule, bool scf)
 {
@@ -241,10 +241,10 @@ struct ExplicitPMBMicropotential {
     PMB pmb;
     CriticalMicropotential<3> mp;
     Explicit<3, PMB> ex;
-    ExplicitPMBMicropotential(const Body<3>& body, Bonds& b, double w_c) : pmb({steel, 3}, Influence{}, b), ex(body, b, pmb, 7850)
+    ExplicitPMBMicropotential(const Body<3>& body, Bonds& b, double w_c) : pmb({steel, 3}, b), ex(body, b, pmb, 7850)
     {
         mp.w_c = w_c;
-        ex.micropotential = &mp;
+        ex.scene.set_damage(mp);
     }
 };
 

@@ -16,7 +16,7 @@ TEST(CrackRun, DuranConstants3D)
     const Body<3> body = box<3>({{0, 0, 0}}, {{8e-3, 8e-3, 8e-3}}, 1e-3);
     const Bonds bonds = build_bonds(body, 3e-3);
     crack::RunInfo info;
-    const PMB model = crack::make_pmb(crack::Material3D{65e9, 2235, 204}, bonds, 3e-3, info);
+    const PMB model = crack::make_pmb(crack::Material3D{65e9, 2235, 204}, bonds, info);
     EXPECT_NEAR(model.c / 3.065e21, 1.0, 2e-4);
     EXPECT_EQ(info.c, model.c);
     EXPECT_NEAR(info.s0 / 0.934e-3, 1.0, 6e-4);
@@ -43,7 +43,7 @@ TEST(CrackRun, UnloadedBlockRunsEqualStepsAndSamples)
     int samples = 0;
     double phi_max = 0, t_last = -1;
     const double t_end = 1e-6, dt_max = 50e-9;  // [s]
-    const crack::RunInfo info = crack::run_fracture<3>(body, bonds, crack::Material3D{65e9, 2235, 204}, 3e-3, free, dt_max, 0.8, t_end, 7,
+    const crack::RunInfo info = crack::run_fracture<3>(body, bonds, crack::Material3D{65e9, 2235, 204}, free, dt_max, 0.8, t_end, 7,
         [&](double t, const std::vector<double>& phi, auto&) {
             ++samples, t_last = t;
             for (double p : phi) phi_max = std::max(phi_max, p);

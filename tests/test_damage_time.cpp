@@ -74,7 +74,7 @@ TEST(Damage, BreaksOnlyOverstretchedBondsAndHonoursNoFail)
     guarded.protect({2}, body.size());
     EXPECT_EQ(guarded.apply(b2, y), 0);
     // A broken bond carries no force: node 2 is free, so its force vanishes.
-    PMB pmb({Elastic::from_E_nu(1.0, 0.25), 1}, Influence{}, b);
+    PMB pmb({Elastic::from_E_nu(1.0, 0.25), 1}, b);
     Field<1> f;
     internal_force(pmb, b, y, f);
     EXPECT_EQ(f.c[0][2], 0.0);
@@ -174,7 +174,7 @@ namespace {
 struct Oscillator {
     Body<1> body = box<1>({{0}}, {{2.0}}, 1.0, 1.0);
     Bonds bonds = build_bonds(body, 1.0);
-    PMB pmb{{Elastic::from_E_nu(0.5, 0.25), 1, Plane::stress, 1.0}, Influence{}, bonds};
+    PMB pmb{{Elastic::from_E_nu(0.5, 0.25), 1, Plane::stress, 1.0}, bonds};
     Explicit<1, PMB> run{body, bonds, pmb, 1.0};
     explicit Oscillator(double u0)
     {

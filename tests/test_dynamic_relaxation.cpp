@@ -71,7 +71,7 @@ TEST(DynamicRelaxation, LPSBarWithAffineGripsIsLinear)
 struct PMBBar {
     Body<1> body = box<1>({{0}}, {{L}}, dx, A);
     Bonds bonds = build_bonds(body, delta);
-    PMB pmb{{Elastic::from_E_nu(E, 0.25), 1, Plane::stress, A, PMB::Params::Calibration::lattice, dx}, Influence{}, bonds};
+    PMB pmb{{Elastic::from_E_nu(E, 0.25), 1, Plane::stress, A, PMB::Params::Calibration::lattice, dx}, bonds};
     Boundary<1> bc;
     explicit PMBBar(double p, TimeFunction scale = TimeFunction::constant(1.0))
     {
@@ -139,7 +139,7 @@ TEST(DynamicRelaxation, PMBBlockInTensionHasMidStrainDOverL)
     const double h = 1e-3, eps = 1e-4;  // [m], [-]
     const Body<3> body = box<3>({{0, 0, 0}}, {{12 * h, 4 * h, 4 * h}}, h);
     const Bonds bonds = build_bonds(body, 3 * h);
-    PMB pmb({Elastic::from_E_nu(75e9, 0.25), 3}, Influence{}, bonds);
+    PMB pmb({Elastic::from_E_nu(75e9, 0.25), 3}, bonds);
     const double xc = 6 * h;  // [m]
     Boundary<3> bc;
     for (std::size_t i = 0; i < body.size(); ++i) {
@@ -171,7 +171,7 @@ TEST(DynamicRelaxation, DensityIsTheGershgorinBoundByHand)
 {
     const Body<1> body = box<1>({{0}}, {{0.2}}, 0.01, 1e-4);
     const Bonds bonds = build_bonds(body, 0.03);
-    PMB pmb({Elastic::from_E_nu(1e9, 0.25), 1, Plane::stress, 1e-4}, Influence{}, bonds);
+    PMB pmb({Elastic::from_E_nu(1e9, 0.25), 1, Plane::stress, 1e-4}, bonds);
     const Field<1> G = stiffness_bound(pmb, bonds, body.x);
     EXPECT_NEAR(G.c[0][10] / (22.0 / 3 * pmb.c * 1e-4), 1.0, 1e-12);
     DynamicRelaxation<1, PMB> dr(body, bonds, pmb);
@@ -216,7 +216,7 @@ TEST(DynamicRelaxation, StiffnessBoundDominatesFiniteDifferenceRowSums)
     const double h = 1e-3;  // [m]
     const Body<3> body = box<3>({{0, 0, 0}}, {{5 * h, 5 * h, 5 * h}}, h);
     const Bonds bonds = build_bonds(body, 3 * h);
-    PMB pmb({Elastic::from_E_nu(75e9, 0.25), 3}, Influence{}, bonds);
+    PMB pmb({Elastic::from_E_nu(75e9, 0.25), 3}, bonds);
     LPS lps({Elastic::from_E_nu(75e9, 0.3), 3}, bonds);
     const double r_pmb = worst_bound_ratio(pmb, body, bonds), r_lps = worst_bound_ratio(lps, body, bonds);
     std::printf("[ DR ] max row sum / bound: PMB %.3f, LPS %.3f\n", r_pmb, r_lps);

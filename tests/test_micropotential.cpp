@@ -85,7 +85,7 @@ double first_break_strain(double h, double ds, double ratio = 1, double s0 = 0)
     auto body = box<3>({{0, 0, 0}}, {{4 * h, 4 * h, 4 * h}}, h);
     Bonds b = build_bonds(body, 3.05 * h);
     b.enable_damage();
-    PMB pmb({si3n4, 3}, Influence{}, b);
+    PMB pmb({si3n4, 3}, b);
     CriticalMicropotential<3> mp;
     mp.w_c = w_critical(Jc_si3n4, b.delta);
     if (ratio != 1) mp.jc_ratio.assign(body.size(), ratio);

@@ -30,8 +30,8 @@ struct Loading {
 
 // Random loading: five random deformations in sequence, forces and increments after each; before
 // the third, every 11th pair breaks (both halves), so its w must stay where it was. History models
-// (viscoelastic, plastic) follow Explicit's protocol (time/verlet.hpp): set_time_step(dt) before the
-// force evaluation, commit() after the increments. The reference is the header's trapezoidal sum
+// (viscoelastic, plastic) follow a scene's protocol (scene.hpp): the step dt in the force evaluation,
+// commit() after the increments. The reference is the header's trapezoidal sum
 // for every ordered bond from its own end, with g_k from the model's public per-bond force
 // (bond_force, or bond_scalar times Y) at each deformation, not from the force pass; with
 // `reference` given, from that model's instead, evaluated at the same deformations. b's intact
@@ -49,8 +49,8 @@ Loading random_loading(Model model, const Body<D>& body, Bonds& b, CriticalMicro
         }
         const Field<D> y = deformed(body, 100 + s);
         Field<D> f;
-        if constexpr (requires { model.set_time_step(step_s); }) model.set_time_step(step_s);
-        internal_force(model, b, y, f);
+        if constexpr (HistoryModel<Model, D>) internal_force(model, b, y, step_s, f);
+        else internal_force(model, b, y, f);
         mp.accumulate(model, b, y);
         if (reference) internal_force(*reference, b, y, f);
         for (std::size_t i = 0; i < body.size(); ++i)

@@ -55,15 +55,14 @@ TEST(PMB, EnergyDensityIsotropicStretch)
 {
     const double dx = 1e-3, s = 1e-3;
     const Elastic mat = Elastic::from_E_nu(200e9, 0.25);
-    Influence one;
     {
         auto body = box<3>({{0, 0, 0}}, {{9 * dx, 9 * dx, 9 * dx}}, dx);
         Bonds b = build_bonds(body, 3 * dx);
         const int mid = 4 + 4 * 9 + 4 * 81;
         const Field<3> y = affine_positions<3>(body, stretch<3>(s));
-        PMB lat({mat, 3, Plane::strain, 1, PMB::Params::Calibration::lattice, dx}, one, b);
+        PMB lat({mat, 3, Plane::strain, 1, PMB::Params::Calibration::lattice, dx}, b);
         EXPECT_NEAR(lat.energy_density(b, y)[mid] / (4.5 * mat.K * s * s), 1.0, 1e-12);
-        PMB cont({mat, 3}, one, b);
+        PMB cont({mat, 3}, b);
         EXPECT_NEAR(cont.energy_density(b, y)[mid] / (4.5 * mat.K * s * s), 285.2215 / (81 * pi), 1e-6);
     }
     {
@@ -75,9 +74,9 @@ TEST(PMB, EnergyDensityIsotropicStretch)
         // (plane stress), E / (2 (1 + nu) (1 - 2 nu)) = 1.6e11 Pa (plane strain); W = 2 kappa_2D s^2.
         const double E = 200e9, nu = 0.25;
         const double kappa_stress = E / (2 * (1 - nu)), kappa_strain = E / (2 * (1 + nu) * (1 - 2 * nu));
-        PMB lat({mat, 2, Plane::stress, t, PMB::Params::Calibration::lattice, dx}, one, b);
+        PMB lat({mat, 2, Plane::stress, t, PMB::Params::Calibration::lattice, dx}, b);
         EXPECT_NEAR(lat.energy_density(b, y)[4 + 4 * 9] / (2 * kappa_stress * s * s), 1.0, 1e-12);
-        PMB lat_strain({mat, 2, Plane::strain, t, PMB::Params::Calibration::lattice, dx}, one, b);
+        PMB lat_strain({mat, 2, Plane::strain, t, PMB::Params::Calibration::lattice, dx}, b);
         EXPECT_NEAR(lat_strain.energy_density(b, y)[4 + 4 * 9] / (2 * kappa_strain * s * s), 1.0, 1e-12);
     }
     {
@@ -85,11 +84,11 @@ TEST(PMB, EnergyDensityIsotropicStretch)
         auto body = box<1>({{0}}, {{9 * dx}}, dx, A);
         Bonds b = build_bonds(body, 3 * dx);
         const Field<1> y = affine_positions<1>(body, stretch<1>(s));
-        PMB lat({mat, 1, Plane::stress, A, PMB::Params::Calibration::lattice, dx}, one, b);
+        PMB lat({mat, 1, Plane::stress, A, PMB::Params::Calibration::lattice, dx}, b);
         EXPECT_NEAR(lat.energy_density(b, y)[4] / (0.5 * mat.E() * s * s), 1.0, 1e-12);
         // Continuum constant c = 2E/(A d^2), d = 3 dx: W = 1/4 c s^2 sum |xi| V
         // = 1/4 (2E / (9 A dx^2)) s^2 (2 (1 + 2 + 3) dx) (A dx) = (2/3) E s^2 = (4/3) E s^2 / 2.
-        PMB cont({mat, 1, Plane::stress, A}, one, b);
+        PMB cont({mat, 1, Plane::stress, A}, b);
         EXPECT_NEAR(cont.energy_density(b, y)[4] / (0.5 * mat.E() * s * s), 4.0 / 3.0, 1e-12);
     }
 }
@@ -160,7 +159,7 @@ TEST(Models, RigidMotionAndForceBalance)
     auto body = fill<3>({{0, 0, 0}}, {{8 * dx, 7 * dx, 6 * dx}}, dx, in_ball<3>({{4 * dx, 3.5 * dx, 3 * dx}}, 3.6 * dx));
     Bonds b = build_bonds(body, 3.05 * dx);
     const Elastic mat = Elastic::from_E_nu(200e9, 0.3);
-    PMB pmb({mat, 3}, Influence{}, b);
+    PMB pmb({mat, 3}, b);
     LPS lps({mat, 3}, b);
     const double c = std::cos(0.7), s = std::sin(0.7);
     Field<3> y = affine_positions<3>(body, {{{c, -s, 0}, {s, c, 0}, {0, 0, 1}}});
@@ -222,7 +221,7 @@ TEST(Models, OneAndTwoThreadsBitIdentical)
     for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
     for (const Bonds* b : {&intact, &std::as_const(damaged)}) {
         LPS lps({mat, 3}, *b);
-        PMB pmb({mat, 3}, Influence{}, *b);
+        PMB pmb({mat, 3}, *b);
         for (int which = 0; which < 2; ++which) {
             Field<3> f1, f2;
             set_threads(1);

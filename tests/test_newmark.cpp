@@ -28,7 +28,7 @@ TEST(Newmark, OscillatorFollowsTrapezoidalClosedForm)
 {
     const Body<1> body = box<1>({{0}}, {{2 * dx}}, dx, A);
     Bonds bonds = build_bonds(body, dx);
-    PMB pmb({.material = Elastic::from_E_nu(E, 0.25), .dim = 1, .measure = A}, Influence{}, bonds);
+    PMB pmb({.material = Elastic::from_E_nu(E, 0.25), .dim = 1, .measure = A}, bonds);
     const double omega = std::sqrt(2 * E / rho) / dx;  // [rad/s]
     const double u0 = 1e-3 * dx;                       // [m]
     for (double wdt : {0.5, 2.0, 10.0}) {
@@ -89,7 +89,7 @@ TEST(Newmark, LinearBarConservesEnergy)
     const double delta = 3 * dx;
     const Body<1> body = box<1>({{-delta}}, {{40 * dx}}, dx, A);
     Bonds bonds = build_bonds(body, delta);
-    PMB pmb({.material = Elastic::from_E_nu(E, 0.25), .dim = 1, .measure = A}, Influence{}, bonds);
+    PMB pmb({.material = Elastic::from_E_nu(E, 0.25), .dim = 1, .measure = A}, bonds);
     LPS lps({Elastic::from_E_nu(E, 0.25), 1}, bonds);
     check_energy(pmb, bonds, body, "PMB");
     check_energy(lps, bonds, body, "LPS");
@@ -101,7 +101,7 @@ TEST(Newmark, FailedStepThrows)
 {
     const Body<1> body = box<1>({{0}}, {{2 * dx}}, dx, A);
     Bonds bonds = build_bonds(body, dx);
-    PMB pmb({.material = Elastic::from_E_nu(E, 0.25), .dim = 1, .measure = A}, Influence{}, bonds);
+    PMB pmb({.material = Elastic::from_E_nu(E, 0.25), .dim = 1, .measure = A}, bonds);
     Newmark<1, PMB> nm(body, bonds, pmb, rho);
     nm.max_iter = 0;
     nm.boundary.fix({0});

@@ -89,7 +89,7 @@ TEST(Newton, AffineFieldIn3DPMBandLPS)
     const double H[3][3] = {{2e-3, 5e-4, 0}, {5e-4, -1e-3, 3e-4}, {0, 3e-4, 1e-3}};
     const Boundary<3> bc = affine_frame<3>(body, H, lo, hi, 2 * 3.05 * dx);
     const Elastic mat = Elastic::from_E_nu(100e9, 0.25);
-    PMB pmb({.material = mat, .dim = 3}, Influence{}, bonds);
+    PMB pmb({.material = mat, .dim = 3}, bonds);
     LPS lps({.material = mat, .dim = 3}, bonds);
     Field<3> u(body.size());
     const NewtonResult rp = Newton<3, PMB>(body, bonds, pmb).solve(u, bc, 0, {.tol = 1e-10});
@@ -148,7 +148,7 @@ TEST(Newton, QuadraticConvergenceOnFiniteStretch)
     const double dx = 1e-3;
     const Body<3> body = box<3>({{0, 0, 0}}, {{12 * dx, 4 * dx, 4 * dx}}, dx);
     const Bonds bonds = build_bonds(body, 2.05 * dx);
-    PMB pmb({.material = Elastic::from_E_nu(100e9, 0.25), .dim = 3}, Influence{}, bonds);
+    PMB pmb({.material = Elastic::from_E_nu(100e9, 0.25), .dim = 3}, bonds);
     Boundary<3> bc;
     NodeSet left = select<3>(body, [&](const Vec<3>& p) { return p[0] < 2 * dx; }, "left");
     NodeSet right = select<3>(body, [&](const Vec<3>& p) { return p[0] > 10 * dx; }, "right");
@@ -185,7 +185,7 @@ TEST(Newton, LoadStepsAndFailureReports)
     const double dx = 0.02, delta = 3 * dx;
     const Body<1> body = box<1>({{0}}, {{1.0}}, dx, 1e-4);
     const Bonds bonds = build_bonds(body, delta);
-    PMB pmb({.material = Elastic::from_E_nu(200e9, 0.25), .dim = 1, .measure = 1e-4}, Influence{}, bonds);
+    PMB pmb({.material = Elastic::from_E_nu(200e9, 0.25), .dim = 1, .measure = 1e-4}, bonds);
     Boundary<1> bc;
     bc.fix(select<1>(body, [&](const Vec<1>& p) { return p[0] < delta; }, "clamp"));
     bc.traction(select<1>(body, [&](const Vec<1>& p) { return p[0] > 1.0 - dx; }, "end"), {{1e8}}, dx, TimeFunction::ramp(1.0, 1.0));

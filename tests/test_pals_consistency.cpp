@@ -166,7 +166,7 @@ TEST(PALS, DISABLED_CostVsPMBAndLPS)
     auto t0 = clock::now();
     PALS pals({steel}, body, b);
     const double t_setup = std::chrono::duration<double>(clock::now() - t0).count();
-    PMB pmb({steel, 3}, Influence{}, b);
+    PMB pmb({steel, 3}, b);
     LPS lps({steel, 3}, b);
     std::mt19937 gen(5);
     std::uniform_real_distribution<double> U(-1e-6, 1e-6);

@@ -131,7 +131,7 @@ TEST(PartialArea, RefusesWhatItCannotDo)
     {  // references that count full families within delta refuse families that reach beyond it
         const auto body = box<2>({{0, 0}}, {{12.0, 12.0}}, 1.0);
         const Bonds b = build_bonds(body, 3.0, {.partial_volume = PartialVolume::exact_area});
-        const PMB pmb({.material = Elastic::from_E_nu(200e9, 1.0 / 3.0), .dim = 2}, Influence{}, b);
+        const PMB pmb({.material = Elastic::from_E_nu(200e9, 1.0 / 3.0), .dim = 2}, b);
         EXPECT_FALSE(families_within_horizon(b));
         EXPECT_THROW(surface_correction(pmb, body, b), std::invalid_argument);
     }

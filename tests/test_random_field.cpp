@@ -163,7 +163,7 @@ Field<3> random_material_run(int threads, bool random)
     const Body<3> body = box<3>({0, 0, 0}, {14 * dx, 13 * dx, 12 * dx}, dx);
     Bonds b = build_bonds(body, 3.05 * dx);
     const Elastic mat = Elastic::from_E_nu(E, 0.25);
-    PMB pmb({.material = mat, .dim = 3}, Influence{}, b);
+    PMB pmb({.material = mat, .dim = 3}, b);
     if (random) pmb.scale_bonds(modulus_factors(RandomSpec::normal(E, 0.05 * E, 11), b, BondRule::mean));
     Explicit<3, PMB> sim(body, b, pmb, rho);
     if (random) sim.rho = density_field(RandomSpec::normal(rho, 0.05 * rho, 11, 0.5 * rho), body.size());

@@ -41,13 +41,13 @@ Case run(bool protect_c, bool rule_on)
     CriticalStretch cs{.s0 = 1.0};  // no bond reaches it: only the rule breaks bonds
     cs.detach_singular = rule_on;
     if (protect_c) cs.protect({static_cast<int>(c)}, body.size());
-    ex.damage = &cs;
+    ex.scene.set_damage(cs);
     ex.start();
     for (int n = 0; n < 2; ++n) ex.step(1e-8);
     Case r;
     for (std::int64_t k = bonds.begin(c); k < bonds.end(c); ++k) r.intact_of_c += bonds.intact[k];
     r.intact_total = std::count(bonds.intact.begin(), bonds.intact.end(), 1);
-    r.detached = ex.detached_nodes;
+    r.detached = cs.detached_nodes;
     EXPECT_GT(r.intact_total, 0);
     if (!protect_c && rule_on) EXPECT_EQ(intact0 - r.intact_total, 2 * 24);  // c's in-plane bonds, both ways
     return r;

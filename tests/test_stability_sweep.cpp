@@ -15,7 +15,7 @@ io::StabilityPoint run_oscillator(double factor)
 {
     Body<1> body = box<1>({{0}}, {{2.0}}, 1.0, 1.0);
     Bonds bonds = build_bonds(body, 1.0);
-    PMB pmb{{Elastic::from_E_nu(0.5, 0.25), 1, Plane::stress, 1.0}, Influence{}, bonds};
+    PMB pmb{{Elastic::from_E_nu(0.5, 0.25), 1, Plane::stress, 1.0}, bonds};
     Explicit<1, PMB> run{body, bonds, pmb, 1.0};
     run.u.c[0][1] = 1e-3;
     run.boundary.fix({0});

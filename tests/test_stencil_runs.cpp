@@ -111,7 +111,7 @@ TEST(StencilRuns, PMBChunkedForceEqualsPairForceFormula)
 {
     auto body = box<3>({{0, 0, 0}}, {{24 * dx, 4 * dx, 3 * dx}}, dx);
     const Bonds b = build_bonds(body, 3.05 * dx);
-    const PMB pmb({Elastic::from_E_nu(100e9, 0.25)}, Influence{}, b);
+    const PMB pmb({Elastic::from_E_nu(100e9, 0.25)}, b);
     const Field<3> y = random_positions(body, 9);
     Field<3> f, ref(body.size());
     internal_force(pmb, b, y, f);
@@ -122,7 +122,7 @@ TEST(StencilRuns, PMBChunkedForceEqualsPairForceFormula)
             ref.add(i, (pmb.c * b.omega[k] * b.volume[k] * s / norm(Y)) * Y);
         }
     EXPECT_LT(relative_difference(f, ref), 1e-12);
-    expect_chunked_equals_per_node<PMB>(body, b, [](const Bonds& bb) { return PMB({Elastic::from_E_nu(100e9, 0.25)}, Influence{}, bb); },
+    expect_chunked_equals_per_node<PMB>(body, b, [](const Bonds& bb) { return PMB({Elastic::from_E_nu(100e9, 0.25)}, bb); },
                                         chunked_nodes(12, 18));
 }
 
@@ -177,7 +177,7 @@ TEST(StencilRuns, ScaledBondsAndCopiedBondsKeepTheForces)
         EXPECT_LT(relative_difference(h, g), 1e-12);
     };
     const PMB::Params pp{Elastic::from_E_nu(100e9, 0.25)};
-    compare(PMB(pp, Influence{}, b), PMB(pp, Influence{}, plain));
+    compare(PMB(pp, b), PMB(pp, plain));
     const Elastic mat = Elastic::from_E_nu(100e9, 0.33);
     compare(LPS({.material = mat, .dim = 3}, b), LPS({.material = mat, .dim = 3}, plain));
 }

@@ -24,7 +24,7 @@ struct Cube {
     Body<3> body = box<3>({{0, 0, 0}}, {{4 * dx, 4 * dx, 4 * dx}}, dx);
     Bonds bonds = build_bonds(body, m * dx);
     Elastic mat = Elastic::from_E_nu(200e9, 0.25);
-    PMB model{{.material = mat, .dim = 3}, Influence{}, bonds};
+    PMB model{{.material = mat, .dim = 3}, bonds};
 };
 
 TEST(StiffnessMatrix, FiniteDifferencePMBMatchesPairSprings)

@@ -43,7 +43,7 @@ TEST(SurfaceCorrection, BarEndFactorsHandComputed1D)
     const double dx = 1e-3, A = 1e-4;
     auto body = box<1>({{0}}, {{10 * dx}}, dx, A);
     Bonds b = build_bonds(body, 3 * dx);
-    PMB pmb({Elastic::from_E_nu(200e9, 0.25), 1, Plane::stress, A}, Influence{}, b);
+    PMB pmb({Elastic::from_E_nu(200e9, 0.25), 1, Plane::stress, A}, b);
     const auto f = surface_correction(pmb, body, b);
     const double expect[5] = {2.0, 12.0 / 7, 4.0 / 3, 1.0, 1.0};
     for (int i = 0; i < 5; ++i) {
@@ -86,7 +86,7 @@ TEST(SurfaceCorrection, FullFamilyFactorsAreOne3D)
     const Elastic mat = Elastic::from_E_nu(200e9, 0.25);
     auto body = box<3>({{0, 0, 0}}, {{9 * dx, 9 * dx, 9 * dx}}, dx);
     Bonds b = build_bonds(body, 3 * dx);
-    PMB pmb({mat, 3}, Influence{}, b);
+    PMB pmb({mat, 3}, b);
     const auto f = surface_correction(pmb, body, b, {.zeta = zeta});
     double sum = 0;
     for (int p = -3; p <= 3; ++p)
@@ -126,12 +126,12 @@ TEST(SurfaceCorrection, BondFactorsSymmetric)
     BondOptions pa;
     pa.partial_volume = PartialVolume::pa_pdlammps;
     Bonds b = build_bonds(body, 3.05 * dx, pa);
-    PMB pmb({mat, 3}, Influence{}, b);
+    PMB pmb({mat, 3}, b);
     const auto G = surface_correction_factors(pmb, body, b);
     for (std::size_t k = 0; k < b.size(); ++k) ASSERT_EQ(G[k], G[b.reverse[k]]) << "bond " << k;
     auto body2 = box<2>({{0, 0}}, {{10 * dx, 7 * dx}}, dx, 1e-3);
     Bonds b2 = build_bonds(body2, 3 * dx);
-    PMB pmb2({mat, 2, Plane::stress, 1e-3}, Influence{}, b2);
+    PMB pmb2({mat, 2, Plane::stress, 1e-3}, b2);
     const auto G2 = surface_correction_factors(pmb2, body2, b2);
     for (std::size_t k = 0; k < b2.size(); ++k) ASSERT_EQ(G2[k], G2[b2.reverse[k]]) << "bond " << k;
 }
@@ -145,7 +145,7 @@ TEST(SurfaceCorrection, PlateFactorsAndEnergies2D)
     const double dx = 1e-3, t = 1e-2, zeta = 1e-6, E = 200e9;
     auto body = box<2>({{0, 0}}, {{20 * dx, 12 * dx}}, dx, t);
     Bonds b = build_bonds(body, 3 * dx);
-    PMB pmb({Elastic::from_E_nu(E, 1.0 / 3), 2, Plane::stress, t}, Influence{}, b);
+    PMB pmb({Elastic::from_E_nu(E, 1.0 / 3), 2, Plane::stress, t}, b);
     const auto f = surface_correction(pmb, body, b, {.zeta = zeta});
     double sum = 0;
     for (int p = -3; p <= 3; ++p)
@@ -187,7 +187,7 @@ TEST(SurfaceCorrection, InvalidInputThrows)
     EXPECT_EQ(parse_surface_correction("none"), SurfaceCorrectionMethod::none);
     auto body = box<1>({{0}}, {{10e-3}}, 1e-3, 1e-4);
     Bonds b = build_bonds(body, 3e-3);
-    PMB pmb({Elastic::from_E_nu(200e9, 0.25), 1, Plane::stress, 1e-4}, Influence{}, b);
+    PMB pmb({Elastic::from_E_nu(200e9, 0.25), 1, Plane::stress, 1e-4}, b);
     EXPECT_THROW(surface_correction(pmb, body, b, {.reference = SurfaceCorrectionOptions::Reference::classical}),
                  std::invalid_argument);
     EXPECT_THROW(surface_correction(pmb, body, b, {.zeta = 0}), std::invalid_argument);

@@ -35,7 +35,7 @@ TEST(SurfaceCorrection, EnergyAtEveryNodeApproachesBulk3D)
     const Elastic mat = Elastic::from_E_nu(200e9, 0.25);
     auto body = box<3>({{0, 0, 0}}, {{8 * dx, 6 * dx, 5 * dx}}, dx);
     Bonds b = build_bonds(body, 3 * dx);
-    PMB pmb({mat, 3}, Influence{}, b);
+    PMB pmb({mat, 3}, b);
     const auto f = surface_correction(pmb, body, b);
     PMB corrected = pmb;
     apply_surface_correction(corrected, body, b, parse_surface_correction("energy"));
@@ -75,7 +75,7 @@ TEST(SurfaceCorrection, BarStiffnessMovesToClassical3D)
     for (double dx : {0.25e-3, 0.125e-3}) {
         auto body = box<3>({{0, 0, 0}}, {{10e-3, 2e-3, 1e-3}}, dx);
         Bonds b = build_bonds(body, 3.05 * dx);
-        PMB pmb({mat, 3}, Influence{}, b);
+        PMB pmb({mat, 3}, b);
         PMB corrected = pmb;
         apply_surface_correction(corrected, body, b, SurfaceCorrectionMethod::energy,
                                  {.reference = SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
@@ -111,7 +111,7 @@ TEST(SurfaceCorrection, StaticBarElongationMovesToClassical1D)
     const int N = 40;
     auto body = box<1>({{0}}, {{N * dx}}, dx, A);
     Bonds b = build_bonds(body, 3 * dx);
-    PMB pmb({Elastic::from_E_nu(E, 0.25), 1, Plane::stress, A, PMB::Params::Calibration::lattice, dx}, Influence{}, b);
+    PMB pmb({Elastic::from_E_nu(E, 0.25), 1, Plane::stress, A, PMB::Params::Calibration::lattice, dx}, b);
     PMB corrected = pmb;
     apply_surface_correction(corrected, body, b, SurfaceCorrectionMethod::energy);
     const double classical = F * (N - 1) * dx / (E * A);

@@ -47,8 +47,7 @@ M3 shear(double eps)
 void advance(ViscoelasticCorrespondence& vc, const Bonds& b, const Field<3>& y, double dt)
 {
     Field<3> f;
-    vc.set_time_step(dt);
-    internal_force(vc, b, y, f);
+    internal_force(vc, b, y, dt, f);
     vc.commit();
 }
 }  // namespace
@@ -158,8 +157,7 @@ TEST(ViscoelasticCorrespondence, TrialEvaluationDoesNotAccumulate)
     Field<3> f1, f2, tmp;
     M3 F = shear(2e-3);
     F(2, 2) = 1.01;
-    vc.set_time_step(0.3 * tau_b);
-    internal_force(vc, b, affine(body, F), f1);
+    internal_force(vc, b, affine(body, F), 0.3 * tau_b, f1);
     internal_force(vc, b, affine(body, shear(-4e-3)), tmp);
     internal_force(vc, b, affine(body, F), f2);
     for (int d = 0; d < 3; ++d) EXPECT_EQ(f1.c[d], f2.c[d]);

@@ -92,13 +92,11 @@ TEST(ViscoelasticLPS, PureShearRelaxationPerBond)
     const Hand h = hand_sums(b, y, i);
     EXPECT_LT(std::abs(h.theta), eps * eps);
     Field<3> f;
-    model.set_time_step(0.0);
-    internal_force(model, b, y, f);
+    internal_force(model, b, y, 0.0, f);
     model.commit();
     for (int s = 0; s <= 15; ++s) {
         if (s > 0) {
-            model.set_time_step(0.3 * tau_b);
-            internal_force(model, b, y, f);
+            internal_force(model, b, y, 0.3 * tau_b, f);
             model.commit();
         }
         double worst = 0, scale = 0;
@@ -124,8 +122,7 @@ TEST(ViscoelasticLPS, HeldDeformationEqualsLpsWithRelaxingShearModulus)
     Field<3> f, g;
     double t = 0;
     for (double dt : {0.0, 0.1 * tau_b, 0.7 * tau_b, 2.0 * tau_b, 5.0 * tau_b}) {
-        model.set_time_step(dt);
-        internal_force(model, b, y, f);
+        internal_force(model, b, y, dt, f);
         model.commit();
         t += dt;
         const Elastic relaxed = Elastic{mat.K, mat.G * (1 + gamma_b * std::exp(-t / tau_b))};
@@ -150,8 +147,7 @@ TEST(ViscoelasticLPS, TrialEvaluationDoesNotAccumulate)
     ViscoelasticLPS model = make_model(b);
     const Field<3> y = deformed(body, 1e-3, false), y2 = deformed(body, 3e-3, true);
     Field<3> f1, f2, tmp;
-    model.set_time_step(0.4 * tau_b);
-    internal_force(model, b, y, f1);
+    internal_force(model, b, y, 0.4 * tau_b, f1);
     internal_force(model, b, y2, tmp);
     internal_force(model, b, y, f2);
     for (int d = 0; d < 3; ++d) EXPECT_EQ(f1.c[d], f2.c[d]);
@@ -167,8 +163,7 @@ TEST(ViscoelasticLPS, StepFarLongerThanTauAtFullStrainIsElastic)
     Field<3> y = body.x, f, g;
     for (int d = 0; d < 3; ++d)
         for (auto& v : y.c[d]) v *= 2;
-    model.set_time_step(1e12 * tau_b);
-    internal_force(model, b, y, f);
+    internal_force(model, b, y, 1e12 * tau_b, f);
     LPS lps({mat}, b);
     internal_force(lps, b, y, g);
     double worst = 0, scale = 0;
@@ -198,14 +193,12 @@ TEST(ViscoelasticLPS, RelaxationDissipatesTheBranchEnergy)
         for (std::size_t i = 0; i < body.size(); ++i) s += W[i] * body.volume[i];
         return s;  // [J]
     };
-    model.set_time_step(0.0);
-    internal_force(model, b, y, f);
+    internal_force(model, b, y, 0.0, f);
     model.commit();
     const double W0 = stored();
     double dissipated = 0;
     for (int s = 0; s < 40; ++s) {
-        model.set_time_step(0.5 * tau_b);
-        internal_force(model, b, y, f);
+        internal_force(model, b, y, 0.5 * tau_b, f);
         model.commit();
         for (std::size_t i = 0; i < body.size(); ++i) {
             ASSERT_GE(model.dissipation[i], 0.0);
@@ -218,7 +211,7 @@ TEST(ViscoelasticLPS, RelaxationDissipatesTheBranchEnergy)
 }
 
 // The Explicit hook: every node held at the affine pure shear by prescribed displacements from t = 0;
-// Explicit must call set_time_step(0) + commit in start() and set_time_step(dt) + commit per step, so
+// Explicit's scene must evaluate with dt = 0 + commit in start() and with dt + commit per step, so
 // that after 10 steps of 0.25 tau_b the centre bond force follows the closed form of V4 (1e-12).
 TEST(ViscoelasticLPS, ExplicitCallsTheHistoryHook)
 {

@@ -258,4 +258,15 @@ void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, Field<D
     bond_forces(model, bonds, y, f, out);
 }
 
+// A HistoryModel (kernel_concepts.hpp): f at y with the trial state over the step dt [s] from the
+// committed history.
+template <int D, class Model>
+    requires HistoryModel<Model, D>
+void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, double dt, Field<D>& f, const BondWork* out = nullptr)
+{
+    if (f.size() != y.size()) f.resize(y.size());
+    model.point_pass(bonds, y, dt);
+    bond_forces(model, bonds, y, f, out);
+}
+
 }  // namespace pd

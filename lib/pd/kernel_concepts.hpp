@@ -75,11 +75,13 @@ concept OrdinaryChunkKernel = requires(const K& k, const Bonds& b, const detail:
 template <class M>
 concept BondDependentModel = requires(M& m, const Bonds& b) { m.recompute(b); };
 
-// A model with history (viscoelastic, plastic): set_time_step(dt) before the force evaluation
-// (the trial state from the committed one; dt = 0: the state is reached at once), commit() after it.
-template <class M>
-concept TimeStepped = requires(M& m) { m.set_time_step(0.0); };
-template <class M>
-concept Committing = requires(M& m) { m.commit(); };
+// A model with history (viscoelastic, plastic): point_pass(bonds, y, dt) evaluates the trial state at
+// y over the step dt [s] from the committed history (dt = 0: the state is reached at once; it does
+// not accumulate), commit() makes it the committed one.
+template <class M, int D>
+concept HistoryModel = requires(M& m, const Bonds& b, const Field<D>& y) {
+    m.point_pass(b, y, 0.0);
+    m.commit();
+};
 
 }  // namespace pd

@@ -83,7 +83,7 @@ Run run_pd(const Bar& b, const std::string& model, int N, int m, double dt_scale
         if (b.newmark) integrate<pd::Newmark<1, M>>(r, body, bonds, pd_model, b, k, n_out, guard);
         else integrate<pd::Explicit<1, M>>(r, body, bonds, pd_model, b, k, n_out, guard);
     };
-    model == "lps" ? go(pd::LPS({.material = pp.material, .dim = 1}, bonds)) : go(pd::PMB(pp, b.w, bonds));
+    model == "lps" ? go(pd::LPS({.material = pp.material, .dim = 1}, bonds)) : go(pd::PMB(pp, bonds));
     r.wall_s = timer.seconds();
     return r;
 }

@@ -88,11 +88,11 @@ static int run_case(int argc, char** argv)
     const bool quick = run.quick();
     const std::vector<double> dxs = quick && !opt.given("dx-list") ? std::vector<double>{1e-3}
                                                                     : pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
-    run.start();
-    const std::filesystem::path& out = run.out();
     // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
     // wait for a descheduled thread): one thread unless --threads is given.
-    if (quick && !opt.given("threads")) pd::set_threads(1);
+    run.quick_threads = 1;
+    run.start();
+    const std::filesystem::path& out = run.out();
     const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::stress};
 
     std::vector<Result> results;
@@ -126,7 +126,7 @@ static int run_case(int argc, char** argv)
             return pd::crack::connected_damage(bonds, p, s, 2.5 * dx, walk, inner);
         };
         const long every = std::max(1L, std::lround(0.1e-6 / std::min(dt_max, 0.5 * dx / 5000)));  // ~0.1 us
-        const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, delta, bc, dt_max, safety, t_end, every,
+        const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, bc, dt_max, safety, t_end, every,
             [&](double t, std::vector<double> p, auto&) {
                 if (seeds.empty()) seeds = p;  // the pre-crack band at t = 0
                 const pd::crack::Mask crack = connected(p);

@@ -87,11 +87,11 @@ static int run_case(int argc, char** argv)
         if (a >= 90) opt.fail("option --angles: rotations must be below 90 deg");
         if (m < 1) opt.fail("option --m-list: m must be at least 1");
     }
-    run.start();
-    const std::filesystem::path& out = run.out();
     // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
     // wait for a descheduled thread): one thread unless --threads is given.
-    if (quick && !opt.given("threads")) pd::set_threads(1);
+    run.quick_threads = 1;
+    run.start();
+    const std::filesystem::path& out = run.out();
     const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::stress};
     const double thr = pd::crack::tip_threshold, nan = pd::crack::nan;
 
@@ -121,7 +121,7 @@ static int run_case(int argc, char** argv)
 
             // 5. Integrate (damage sampled only at the end).
             std::vector<double> phi, seeds;
-            const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, delta, bc, dt_max, safety, t_end,
+            const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, bc, dt_max, safety, t_end,
                 std::numeric_limits<long>::max(), [&](double, std::vector<double> p, auto&) {
                     if (seeds.empty()) seeds = p;
                     phi = std::move(p);

@@ -69,11 +69,11 @@ static int run_case(int argc, char** argv)
     if (quick && !opt.given("t-end")) t_end = 50e-6;  // initiation and the run of the cracks
     const std::vector<double> dxs = quick && !opt.given("dx-list") ? std::vector<double>{1e-3}
                                                                     : pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
-    run.start();
-    const std::filesystem::path& out = run.out();
     // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
     // wait for a descheduled thread): one thread unless --threads is given.
-    if (quick && !opt.given("threads")) pd::set_threads(1);
+    run.quick_threads = 1;
+    run.start();
+    const std::filesystem::path& out = run.out();
     const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::strain};
     const double y_up = 0.5 * (H + gap), y_low = 0.5 * (H - gap);  // notch lines [m]
 
@@ -114,7 +114,7 @@ static int run_case(int argc, char** argv)
             return c;
         };
         const long every = std::max(1L, std::lround(0.1e-6 / dt_max));
-        const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, delta, bc, dt_max, safety, t_end, every,
+        const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, bc, dt_max, safety, t_end, every,
             [&](double t, std::vector<double> p, auto&) {
                 if (seeds.empty()) seeds = p;
                 h_up.push(t, pd::crack::tip_farthest(body.x, p, tip_up, threshold, crack_of(p, side_up)));

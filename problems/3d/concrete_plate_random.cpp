@@ -99,13 +99,13 @@ static int run_case(int argc, char** argv)
     for (int s = seed0; s < seed0 + seeds; ++s) {
         pd::Bonds b = bonds;
         b.enable_damage();
-        pd::PMB model(params, pd::Influence{}, b);
+        pd::PMB model(params, b);
         pd::CriticalStretch cs;
         cs.s0_bond = pd::bond_field(pd::RandomSpec::normal(s_mean, s_sd, static_cast<std::uint64_t>(s)), b, pd::parse_bond_rule(rule));
         cs.protect(A, body.size());
         cs.protect(B, body.size());
         pd::Explicit<2, pd::PMB> sim(body, b, model, rho);
-        sim.damage = &cs;
+        sim.scene.set_damage(cs);
         sim.boundary.fix(A);
         sim.boundary.prescribe({pd::Prescribed::Kind::velocity, B, 0, pd::TimeFunction::constant(speed)});
         sim.start();

@@ -128,8 +128,8 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro)
     mp.hourglass_work = p.hourglass_work;
     cs.protect(protect, body.size());
     mp.protect(protect, body.size());
-    if (micro) ex.micropotential = &mp;
-    else ex.damage = &cs;
+    if (micro) ex.scene.set_damage(mp);
+    else ex.scene.set_damage(cs);
     const double c = pd::PMB::micromodulus({p.mat, 3}, pd::Influence{}, delta);
     const double dt = p.dt_factor * pd::critical_step_silling_askari(bonds, ex.rho, c).dt;
     ex.start();

@@ -95,7 +95,7 @@ static int run_case(int argc, char** argv)
         };
         Run r;
         if (name == "pmb") {  // nu = 1/4, energy surface correction (classical W_inf), as bar_stiffness_3d
-            pd::PMB model({.material = mat, .dim = 3}, pd::Influence{}, bonds);
+            pd::PMB model({.material = mat, .dim = 3}, bonds);
             pd::apply_surface_correction(model, body, bonds, pd::SurfaceCorrectionMethod::energy,
                                          {.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
             const pd::Elastic pmb_mat = pd::Elastic::from_E_nu(3 * mat.K * 0.5, 0.25);  // E = 1.5 K

@@ -128,7 +128,7 @@ static int run_case(int argc, char** argv)
     const std::vector<std::string> names{"pmb", "lps", "lps_scf", "pals", "correspondence"};
     auto make = [&](std::size_t k) -> Runner {
         switch (k) {
-        case 0: return make_runner(sc, [&] { return pd::PMB(pmb_params, pd::Influence{}, bonds); });
+        case 0: return make_runner(sc, [&] { return pd::PMB(pmb_params, bonds); });
         case 1: return make_runner(sc, [&] { return pd::LPS({.material = mat, .dim = 3}, bonds); });
         case 2: return make_runner(sc, [&] { pd::LPS lps({.material = mat, .dim = 3}, bonds); lps.apply_shear_correction(body.x); return lps; });
         case 3: return make_runner(sc, [&] { return pd::PALS({.material = mat}, body, bonds); });

@@ -77,8 +77,8 @@ Result run_plate(const Setup& s, const std::string& name, const std::string& dam
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(s.Gc, s.delta);
     cs.protect(s.protect, s.body.size()), mp.protect(s.protect, s.body.size());
-    if (damage == "stretch") ex.damage = &cs;
-    if (damage == "micro") ex.micropotential = &mp;
+    if (damage == "stretch") ex.scene.set_damage(cs);
+    if (damage == "micro") ex.scene.set_damage(mp);
     const double stretch = 0.5 * s.strain * s.gauge;  // grip displacement at the end of the ramp [m]
     for (int d = 0; d < 3; ++d) {
         const double g = d == 1 ? stretch : 0;
@@ -115,7 +115,7 @@ Result run_plate(const Setup& s, const std::string& name, const std::string& dam
     r.wall = timer.seconds();
     std::printf("  %-12s start %7.2f us, end %7.2f us, propagation %6.2f us, peak %.4g MPa, broken %ld (at end %ld), "
                 "detached %ld, %.1f s\n", name.c_str(), r.t_start * 1e6, r.t_end * 1e6, (r.t_end - r.t_start) * 1e6,
-                r.peak_stress * 1e-6, r.broken_final, r.broken_at_end, mp.detached_nodes + ex.detached_nodes, r.wall);
+                r.peak_stress * 1e-6, r.broken_final, r.broken_at_end, mp.detached_nodes + cs.detached_nodes, r.wall);
     return r;
 }
 

@@ -146,9 +146,8 @@ int run_case(int argc, char** argv)
         for (long s = 1; s <= static_cast<long>(transient + periods) * N; ++s) {
             const double ph = 2 * pi * static_cast<double>(s % N) / N;
             y = pd::sheared(body, g0 * std::sin(ph));
-            lps.set_time_step(dt), corr.set_time_step(dt);
-            pd::internal_force(lps, bonds, y, f);
-            pd::internal_force(corr, bonds, y, f);
+            pd::internal_force(lps, bonds, y, dt, f);
+            pd::internal_force(corr, bonds, y, dt, f);
             lps.commit(), corr.commit();
             if (s <= static_cast<long>(transient) * N) continue;
             const std::complex<double> basis(std::sin(ph), std::cos(ph));  // sin -> real part, cos -> imaginary (lead)

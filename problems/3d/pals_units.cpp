@@ -49,7 +49,7 @@ void with_model(const std::string& name, Scene& s, const pd::Elastic& mat, doubl
     const pd::PMB::Params pmb{.material = mat, .dim = 3};
     const double c = pd::PMB::micromodulus(pmb, pd::Influence{}, s.delta);
     const pd::Field<3>& x = s.bar.body.x;
-    if (name == "pmb") { pd::PMB m(pmb, pd::Influence{}, s.bonds); fn(m, pd::stiffness_bound(m, s.bonds, x), c); }
+    if (name == "pmb") { pd::PMB m(pmb, s.bonds); fn(m, pd::stiffness_bound(m, s.bonds, x), c); }
     else if (name == "lps" || name == "lps-scf") {
         pd::LPS m({.material = mat, .dim = 3}, s.bonds);
         if (name == "lps-scf") m.apply_shear_correction(x);

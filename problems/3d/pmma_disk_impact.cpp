@@ -23,6 +23,7 @@
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/core/timer.hpp"
+#include "pd/damage/critical_stretch.hpp"
 #include "pd/io/vtu.hpp"
 #include "pd/models/registry.hpp"
 #include "pd/core/random_field.hpp"
@@ -57,12 +58,12 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
 {
     const pd::io::Timer timer;
     pd::Explicit<3, Model> sim(s.body, bonds, model, s.rho);
-    sim.damage = s.cs;
+    if (s.cs) sim.scene.set_damage(*s.cs);
     sim.boundary.fix(s.clamp);
     // The tip starts touching the top layer of points: t = 0 is the first contact.
     pd::Impactor<3> tip{.mass = s.mass, .radius = s.radius, .c = {0, 0, s.z_top + s.radius}, .V = {0, 0, -s.v0}, .k = s.k_pen};
     tip.validate();
-    sim.extra_force = [&](double t, const pd::Field<3>& y, const pd::Field<3>&, pd::Field<3>& b) { tip(t, y, b, s.body.volume); };
+    sim.scene.extra_force = [&](double t, const pd::Field<3>& y, const pd::Field<3>&, pd::Field<3>& b) { tip(t, y, b, s.body.volume); };
     sim.start();
     const double E0 = tip.kinetic_energy();  // [J]
     pd::io::CsvWriter h(out / "history.csv", {"t_s", "z_tip_m", "v_tip_m_s", "F_contact_N", "F_support_N", "E_tip_kinetic_J",

@@ -113,9 +113,8 @@ int run_case(int argc, char** argv)
             const double t = s * dt, step_dt = s == 0 ? 0.0 : dt;
             const double g = is_ramp ? g0 * std::min(t / t1, 1.0) : g0;  // engineering shear at t [-]
             const pd::Field<3> y = pd::sheared(body, g);
-            lps.set_time_step(step_dt), corr.set_time_step(step_dt);
-            pd::internal_force(lps, bonds, y, f);
-            pd::internal_force(corr, bonds, y, f);
+            pd::internal_force(lps, bonds, y, step_dt, f);
+            pd::internal_force(corr, bonds, y, step_dt, f);
             lps.commit(), corr.commit();
             // References: the elastic value x(t) plus the branch gamma_b (x - h).
             const double omega = bonds.omega[kc], ed_full = hl.ed;

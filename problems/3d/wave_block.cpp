@@ -154,7 +154,7 @@ static int run_case(int argc, char** argv)
     History h1, h2;
     {
         pd::io::CsvWriter centroid(out / "centroid.csv", {"t_s", "right_m", "left_m", "distance_m"});
-        pd::with_model<pd::PMB, pd::LPS>(pd::ModelChoice{.name = model_name, .material = mat, .influence = influence}, blk.body, bonds, [&](auto& model) {
+        pd::with_model<pd::PMB, pd::LPS>(pd::ModelChoice{.name = model_name, .material = mat}, blk.body, bonds, [&](auto& model) {
             pd::LateralImages wrapped(model, blk);
             h1 = integrate(wrapped, blk, bonds, pulse, dt, steps, out / "energy.csv", &centroid, !quick);
             h2 = integrate(wrapped, blk, bonds, pulse, dt / 2, 2 * steps, out / "energy_half_dt.csv", nullptr, !quick);

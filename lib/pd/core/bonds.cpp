@@ -25,6 +25,7 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     const std::size_t n = body.size();
     Bonds b;
     b.delta = delta;
+    b.influence = opt.influence;
     b.offset.assign(n + 1, 0);
     if (n == 0) return b;
     const bool exact = opt.partial_volume == PartialVolume::exact_area;

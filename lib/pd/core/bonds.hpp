@@ -27,6 +27,7 @@ PartialVolume parse_partial_volume(const std::string& name);  // "none" | "pa-pd
 
 struct Bonds {
     double delta = 0;                 // horizon [m]
+    Influence influence{};            // omega(|xi|) the families were built with (`omega` holds its values)
     std::vector<std::int64_t> offset;  // family of i is [offset[i], offset[i+1])
     std::vector<int> partner;         // j of bond k
     std::vector<double> length;       // reference length |xi| [m]

@@ -17,6 +17,7 @@
 #include "pd/core/field.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/core/material.hpp"
+#include "pd/damage/singular_nodes.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -24,6 +25,8 @@
 #include <vector>
 
 namespace pd {
+
+struct BondWork;  // bond_loop.hpp
 
 inline double s0_pmb_3d(double Gc, double K, double delta) { return std::sqrt(5 * Gc / (9 * K * delta)); }
 inline double s0_pmb(double Gc, double E, double delta, int dim, Plane plane)
@@ -49,7 +52,9 @@ struct CriticalStretch {
     std::vector<double> s0_bond;        // per-bond critical stretch [-] (random_field.hpp), symmetric
                                         // (s0_bond[k] == s0_bond[reverse[k]]); empty = s0 everywhere
     std::vector<std::uint8_t> no_fail;  // per node, 1 = bonds never break; empty = none
-    bool detach_singular = true;        // Explicit: the singular-node rule for correspondence (singular_nodes.hpp)
+    bool detach_singular = true;        // in a scene: the singular-node rule for correspondence (singular_nodes.hpp)
+    std::vector<std::uint8_t> detached; // per node, 1 = all bonds break at the next break_bonds
+    long detached_nodes = 0;            // nodes detached so far by the singular-node rule
 
     void protect(const NodeSet& set, std::size_t nodes)
     {
@@ -68,6 +73,22 @@ struct CriticalStretch {
             return apply_with(b, y, [this](std::int64_t k) { return s0_bond[k]; });
         }
         return apply_with(b, y, [this](std::int64_t) { return s0; });
+    }
+
+    // The damage rule of a scene (scene.hpp): before a force evaluation the stretched bonds break,
+    // then those of the nodes the singular-node rule detached; after it, that rule marks its nodes.
+    template <int D>
+    long break_bonds(Bonds& b, const Field<D>& y)
+    {
+        const long broke = apply(b, y);
+        return detach_singular ? broke + break_detached_bonds(b, detached, no_fail) : broke;
+    }
+    template <class Model>
+    const BondWork* bond_work(const Bonds&) const { return nullptr; }
+    template <class Model, int D>
+    void record(const Model& model, const Bonds& b, const Field<D>&)
+    {
+        if (detach_singular) detached_nodes += mark_singular_nodes(model, b.nodes(), detached);
     }
 
 private:

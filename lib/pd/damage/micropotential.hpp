@@ -29,7 +29,7 @@
 // Singular nodes (000c sec. 2.5, the thesis' rule for correspondence): when a model exposes K^-1 and F
 // per node, a node whose K is singular (K^-1 = 0, correspondence.hpp) or with det F <= 0 loses all
 // its bonds at the next breaking pass.
-// Usage (Explicit in time/verlet.hpp does this): apply(bonds) before the force evaluation breaks bonds
+// Usage (a scene, scene.hpp, does this): apply(bonds) before the force evaluation breaks bonds
 // with w >= w_C; internal_force(model, bonds, y, f, mp.bond_work<Model>(bonds)) evaluates the forces
 // and adds the step's increments; accumulate(model, bonds, y) then records y for the next step
 // (without the bond_work call it runs the model's bond pass once more itself).
@@ -101,6 +101,12 @@ struct CriticalMicropotential {
         }
         return broken;
     }
+
+    // The damage rule of a scene (scene.hpp): apply before a force evaluation that takes bond_work,
+    // accumulate after it.
+    long break_bonds(Bonds& b, const Field<D>&) { return apply(b); }
+    template <class Model>
+    void record(const Model& model, const Bonds& b, const Field<D>& y) { accumulate(model, b, y); }
 
     // The bond work for the force evaluation at the positions of the next accumulate:
     // internal_force(model, b, y, f, mp.bond_work<Model>(b)) adds the increments of the step

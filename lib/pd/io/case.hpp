@@ -43,6 +43,7 @@ inline int max_threads()
 class Case {
 public:
     Options opt;
+    int quick_threads = 0;  // OpenMP threads of a --quick run without --threads (0: as --threads' default)
 
     // out_help: the help text of --out (a driver that writes more than CSV files says so there).
     Case(std::string program, std::string description, const std::string& default_out,
@@ -52,7 +53,8 @@ public:
     }
 
     // Parses argv (exit 0 on --help, 2 on an input error), creates --out (exit 2 when it cannot
-    // be), echoes the options, writes params.csv and sets the OpenMP threads. A driver whose
+    // be), echoes the options, writes params.csv and sets the OpenMP threads (quick_threads for a
+// --quick run without --threads, when set). A driver whose
     // defaults depend on --quick (or on other options) calls parse(), sets them, then start().
     void start(int argc, const char* const* argv)
     {
@@ -82,7 +84,7 @@ public:
         } catch (const std::exception& e) {
             opt.fail("option --out: " + std::string(e.what()));
         }
-        set_threads(opt.get_int("threads"));
+        set_threads(quick_ && quick_threads > 0 && !opt.given("threads") ? quick_threads : opt.get_int("threads"));
     }
 
     bool quick() const { return quick_; }

@@ -13,7 +13,7 @@
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y|; theta_i and the forces sum only intact bonds.
 // Damage rule (Params::weighted_volume; tests/test_damage_models.cpp):
 //   intact (default): m_i (and SCF_i when it was computed from positions) sums the intact bonds;
-//     recompute(bonds) refreshes them after bonds break (Explicit calls it, time/verlet.hpp). The
+//     recompute(bonds) refreshes them after bonds break (a scene calls it, scene.hpp). The
 //     damaged body is then exactly the body built without the broken bonds, and the force is the
 //     gradient of the reported W (variational), as for PALS (recomputed multipliers) and
 //     correspondence (K over intact bonds).

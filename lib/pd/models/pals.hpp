@@ -25,8 +25,8 @@
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y| (omega and sigma are even in xi), through
 // bond_scalar with t regrouped as in Peridigm: t = p_i omega_i |xi| + 2G sigma_i (e - theta_i
 // |xi|/3), p_i = (K + 2G m_sigma/9) theta_i - (2G/3)(sigma_i x)•e, m_sigma = (sigma_i x)•x.
-// Multipliers use the intact bonds; after damage call recompute(bonds) (Explicit does it whenever
-// bonds break, time/verlet.hpp): the damaged body is then the body built without the broken bonds
+// Multipliers use the intact bonds; after damage call recompute(bonds) (a scene, scene.hpp, does it whenever
+// bonds break): the damaged body is then the body built without the broken bonds
 // (tests/test_damage_models.cpp). Before recompute the multipliers are those of the old families.
 // Cost: nodes with translated families (translated_families.hpp: same |xi|, w_i, w_j, s_i, s_j bond by
 // bond, found by recompute) take both passes W nodes at a time in undamaged scenes.

@@ -43,7 +43,6 @@ struct PlasticCorrespondence {
     {
     }
 
-    void set_time_step(double dt) { pts.set_time_step(dt); }
     void commit()
     {
         hist_c = hist;
@@ -51,6 +50,12 @@ struct PlasticCorrespondence {
     }
 
     // Trial state at y from the committed history (header).
+    // The trial state over a step dt [s] (HistoryModel, kernel_concepts.hpp); without dt: the last step given.
+    void point_pass(const Bonds& b, const Field<3>& y, double dt)
+    {
+        pts.set_time_step(dt);
+        point_pass(b, y);
+    }
     void point_pass(const Bonds& b, const Field<3>& y)
     {
         model.point_pass(b, y);  // F at y

@@ -45,7 +45,6 @@ struct PlasticLPS {
         if (p.dim != 3) throw std::invalid_argument("PlasticLPS: written for 3D");
     }
 
-    void set_time_step(double dt) { pts.set_time_step(dt); }
     void recompute(const Bonds& b) { lps.recompute(b); }  // after bonds broke (header)
     void commit()
     {
@@ -54,6 +53,12 @@ struct PlasticLPS {
     }
 
     // Trial state at y from the committed history (header).
+    // The trial state over a step dt [s] (HistoryModel, kernel_concepts.hpp); without dt: the last step given.
+    void point_pass(const Bonds& b, const Field<3>& y, double dt)
+    {
+        pts.set_time_step(dt);
+        point_pass(b, y);
+    }
     void point_pass(const Bonds& b, const Field<3>& y)
     {
         lps.point_pass(b, y);

@@ -46,7 +46,6 @@ struct PlasticPALS {
     {
     }
 
-    void set_time_step(double dt) { pts.set_time_step(dt); }
     void recompute(const Bonds& b) { pals.recompute(b); }  // after bonds broke (header)
     void commit()
     {
@@ -55,6 +54,12 @@ struct PlasticPALS {
     }
 
     // Trial state at y from the committed history (header).
+    // The trial state over a step dt [s] (HistoryModel, kernel_concepts.hpp); without dt: the last step given.
+    void point_pass(const Bonds& b, const Field<3>& y, double dt)
+    {
+        pts.set_time_step(dt);
+        point_pass(b, y);
+    }
     void point_pass(const Bonds& b, const Field<3>& y)
     {
         pals.point_pass(b, y);

@@ -1,10 +1,11 @@
 // pd/models/plastic_points.hpp -- the per-node plastic state shared by the PD plasticity models
 // (plastic_lps.hpp, plastic_correspondence.hpp): Johnson-Cook law, which nodes are plastic, the
 // node temperatures, the committed and trial equivalent plastic strain, and the per-step outputs.
-// History protocol (also used by the viscoelastic models): set_time_step(dt) sets the step (dt = 0:
-// an instantaneous step, as Explicit::start takes: rate-independent return, no heat source);
-// point_pass(bonds, y) evaluates the TRIAL state at y from the COMMITTED history (idempotent: no
-// accumulation over solver iterations); commit() makes the trial history the committed one.
+// History protocol (HistoryModel, kernel_concepts.hpp; also the viscoelastic models'): the models'
+// point_pass(bonds, y, dt) evaluates the TRIAL state at y over the step dt from the COMMITTED history
+// (idempotent: no accumulation over solver iterations; dt = 0: an instantaneous step, as Explicit::start
+// takes: rate-independent return, no heat source; without dt: the last step given, quasi-static
+// solvers); commit() makes the trial history the committed one.
 // Dissipated power (spec/000b eqs. 5.22-5.23, 5.51): p_i = beta_TQ sigma_y dlambda / dt [W/m^3],
 // the heat source of a thermo-mechanical scene (heat_source, after point_pass).
 // Also the trial deviatoric bond extension e_de of the two ordinary models (LPS, PALS).
@@ -40,9 +41,9 @@ struct PlasticPoints {
         if (!(beta_TQ >= 0 && beta_TQ <= 1)) throw std::invalid_argument("PlasticPoints: beta_TQ must lie in [0, 1]");
     }
 
-    void set_time_step(double step)
+    void set_time_step(double step)  // the models' point_pass(bonds, y, dt)
     {
-        if (!(step >= 0)) throw std::invalid_argument("set_time_step: dt must be >= 0");
+        if (!(step >= 0)) throw std::invalid_argument("point_pass: time step dt must be >= 0");
         dt = step;
     }
     bool is_plastic(std::size_t i) const { return plastic.empty() || plastic[i]; }

@@ -50,8 +50,8 @@ struct PMB {
     const double* length = nullptr;  // |xi| of the bonds the model was built on [m]
 
     PMB() = default;
-    PMB(const Params& p, const Influence& w, const Bonds& bonds)
-        : c(micromodulus(p, w, bonds.delta)),
+    PMB(const Params& p, const Bonds& bonds)
+        : c(micromodulus(p, bonds.influence, bonds.delta)),
           coef(bonds.size()), length(bonds.length.data())
     {
         for (std::size_t k = 0; k < bonds.size(); ++k) coef[k] = c * bonds.omega[k] * bonds.volume[k] / bonds.length[k];

@@ -43,7 +43,6 @@ struct ModelChoice {
     Plane plane = Plane::strain;   // 2D reduction
     double measure = 1;            // 2D thickness [m] / 1D cross-section [m^2]
     double C_hg = 0;               // correspondence: Littlewood hourglass coefficient [-] (source 0.02)
-    Influence influence{};         // PMB micromodulus: the influence the bonds were built with
 };
 
 namespace detail {
@@ -59,7 +58,7 @@ decltype(auto) with_model(const ModelChoice& c, const Body<D>& body, const Bonds
 {
     if (c.name == "pmb") {
         if constexpr (detail::model_allowed<PMB, Only...>) {
-            PMB model({.material = c.material, .dim = D, .plane = c.plane, .measure = c.measure}, c.influence, bonds);
+            PMB model({.material = c.material, .dim = D, .plane = c.plane, .measure = c.measure}, bonds);
             return fn(model);
         }
     } else if (c.name == "lps" || c.name == "lps-scf") {

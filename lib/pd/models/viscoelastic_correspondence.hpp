@@ -12,7 +12,7 @@
 // response is the elastic K. In the strain form of laws/maxwell.hpp, x = s_hat/(2G) and the branch
 // modulus is 2 G gamma_b (q = 2 G gamma_b h); the dissipated energy of the step per node [J/m^3] is
 // (2 G gamma_b / tau_b) int (x - h):(x - h) dt, exact per step.
-// History protocol (as models/viscoelastic_lps.hpp): set_time_step(dt), point_pass(bonds, y) = trial
+// History protocol (as models/viscoelastic_lps.hpp): point_pass(bonds, y, dt) = trial
 // state at y from the committed state (sigma_hat, R, V, q, s_hat, configuration y_c; no accumulation),
 // commit() after each accepted step (time/verlet.hpp calls both). The Flanagan-Taylor update runs over
 // the step from y_c to y by models/load_step.hpp (LoadStep::advance): mid-step configuration
@@ -61,10 +61,12 @@ public:
         q_c_ = q, s_hat_c_ = s_hat;
     }
 
-    void set_time_step(double step)
+    // The trial state over a step [s] (HistoryModel, kernel_concepts.hpp); without it: the last step given.
+    void point_pass(const Bonds& b, const Field<3>& y, double step)
     {
         if (!(step >= 0)) throw std::invalid_argument("ViscoelasticCorrespondence: time step must be >= 0");
         dt = step;
+        point_pass(b, y);
     }
 
     // Trial state at y (steps 1-5 of the header).

@@ -12,10 +12,10 @@
 // Force on i from bond k (i -> j): the LPS pair force plus (tv_ik + tv_ji) omega V_j Y/|Y|, with the
 // viscous force-state scalar tv_ik = alpha_b,i (e_d - e_db) of bond k seen from i (tv_ji from the
 // reverse bond, Bonds::reverse).
-// History protocol (shared with the plastic models): set_time_step(dt) gives the step; point_pass
-// (bonds, y) evaluates the TRIAL back extensions e_db^{n+1} at y from the COMMITTED e_d^n, e_db^n (it
-// does not accumulate: two calls at the same y give the same force); commit() makes the trial history
-// the committed one (once per accepted time step: time/verlet.hpp calls both). The per-bond history
+// History protocol (HistoryModel, kernel_concepts.hpp; shared with the plastic models): point_pass
+// (bonds, y, dt) evaluates the TRIAL back extensions e_db^{n+1} at y over the step dt from the
+// COMMITTED e_d^n, e_db^n (it does not accumulate: two calls at the same y give the same force);
+// commit() makes the trial history the committed one (once per accepted time step: scene.hpp). The per-bond history
 // (e_d, e_db, committed and trial) exists only in scenes that use this model.
 // Dissipation (7.10): the energy dissipated by the dashpots of node i over the trial step [J/m^3],
 //   D_i = sum_k (alpha_b,i omega V_j / tau_b) int (e_d - e_db)^2 dt   (laws/maxwell.hpp, exact per step).
@@ -59,10 +59,13 @@ struct ViscoelasticLPS {
         if (b.reverse.size() != b.size()) throw std::invalid_argument("ViscoelasticLPS: bonds need the reverse-bond index");
     }
 
-    void set_time_step(double step)
+    // The trial state over a step [s] (HistoryModel, kernel_concepts.hpp); without it: the last step given.
+    template <int D>
+    void point_pass(const Bonds& b, const Field<D>& y, double step)
     {
         if (!(step >= 0)) throw std::invalid_argument("ViscoelasticLPS: time step must be >= 0");
         dt = step;
+        point_pass(b, y);
     }
 
     // The trial state becomes the committed history.

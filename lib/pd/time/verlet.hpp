@@ -7,36 +7,20 @@
 // of the constraints (reaction -f times displacement increment, trapezoidal in time, plus the
 // change of kinetic energy of the constrained components, which the constraint supplies).
 // A velocity-prescribed component ends the step at g(t_{n+1}).
-// Damage: bonds break before the force evaluation; a model with recompute(bonds) gets it called
-// whenever bonds broke. Either rule, or none: `damage` (critical stretch) or `micropotential`
-// (damage/micropotential.hpp; its work increments are accumulated right after the force evaluation).
-// Null pointers cost one test per step, nothing per bond. With `damage` and a correspondence model,
-// the thesis' singular-node rule (damage/singular_nodes.hpp; CriticalStretch::detach_singular) breaks
-// all bonds of a node whose K became singular or det F <= 0 at the previous force evaluation.
-// History models (viscoelastic, plastic): a model with set_time_step(dt) gets the step before the
-// force evaluation (0 in start()), which evaluates the trial state from the committed history, and
-// commit() after it, once per step; models without these members compile as before.
-// Rate-form stress (RateFormModel, models/rate_form.hpp: Correspondence<3> with Law::flanagan_taylor): after
-// damage and before the force evaluation, update_stress(bonds, y_m, v_s, dt) advances sigma_hat, R, V
-// over the step, y_m = x + (u_n + u_{n+1})/2 the mid-step configuration and v_s = (u_{n+1} - u_n)/dt
-// (= v_{n+1/2}), as that header prescribes (exactly skew L for a rigid rotation). start() takes the
-// state from the reference (u = 0) to the initial u in one pseudo step dt = 1 (the update depends on
-// v dt only), as LoadStep from y0 = x does; so the model's state must belong to the reference then.
-// Extra force hook (bc/contact.hpp: contact, impactors): extra_force(t, y, v, b) adds a body-force
-// density [N/m^3] to b after the boundary's body forces (v is the half-step velocity there); its
-// work enters the external work like any body force. Empty: nothing is called.
+// Forces come from the scene (scene.hpp): damage rule, bond-dependent constants, rate-form stress,
+// history and bond work are its business. Explicit hands it u_n, u_{n+1} and dt each step, and 0 in
+// start(): the history state is reached at once and a rate-form stress goes from the reference
+// (u = 0) to the initial u in one pseudo step, as LoadStep from y0 = x does (so the model's state must
+// belong to the reference then); it commits the history once per step. The scene's extra_force (contact,
+// impactors) adds to the boundary's body forces (v is the half-step velocity there); its work enters
+// the external work like any body force.
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
 // (initial energy + |external work|) and above a round-off floor (the whole mass moving at
 // 1e-10 m/s: a scene at rest stays quiet), throws Unstable naming the step and the node.
 #pragma once
 #include "pd/bc/boundary.hpp"
-#include "pd/bond_loop.hpp"
-#include "pd/damage/critical_stretch.hpp"
-#include "pd/damage/micropotential.hpp"
-#include "pd/damage/singular_nodes.hpp"
 #include "pd/core/errors.hpp"
-#include "pd/kernel_concepts.hpp"
-#include "pd/models/rate_form.hpp"
+#include "pd/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -94,29 +78,27 @@ double constrained_kinetic(const Body<D>& body, const Field<D>& v, const std::ve
 template <int D, class Model>
 class Explicit {
 public:
+    Scene<D, Model> scene;             // forces (header); set_damage, extra_force
     const Body<D>& body;
     Bonds& bonds;
     Model& model;
     std::vector<double> rho;           // density per node [kg/m^3]
     Boundary<D> boundary;
-    const CriticalStretch* damage = nullptr;  // null: no bond breaks by critical stretch
-    CriticalMicropotential<D>* micropotential = nullptr;  // null: no bond breaks by micropotential
     double energy_limit = 10;          // stability guard factor (see header)
-    std::function<void(double t, const Field<D>& y, const Field<D>& v, Field<D>& b)> extra_force;  // see header
 
     Field<D> u, v, a;                  // displacement [m], velocity [m/s], acceleration [m/s^2]
     double t = 0;                      // [s]
     long step_count = 0;
     long broken_bonds = 0;
-    long detached_nodes = 0;  // critical stretch with correspondence: nodes detached by the singular-node rule
 
-    Explicit(const Body<D>& body, Bonds& bonds, Model& model, double density)
-        : body(body), bonds(bonds), model(model), rho(body.size(), density),
-          u(body.size()), v(body.size()), a(body.size()), y_(body.size()), f_(body.size()), b_(body.size()),
+    Explicit(const Scene<D, Model>& s, double density)
+        : scene(s), body(s.body), bonds(s.bonds), model(s.model), rho(body.size(), density),
+          u(body.size()), v(body.size()), a(body.size()), f_(body.size()), b_(body.size()),
           f_prev_(body.size()), u_old_(body.size()), b_prev_(body.size())
     {
         if (!(density > 0)) throw std::invalid_argument("density rho must be positive");
     }
+    Explicit(const Body<D>& body, Bonds& bonds, Model& model, double density) : Explicit(Scene<D, Model>(body, bonds, model), density) {}
 
     // Call after initial u, v and the boundary are set: forces and accelerations at t.
     void start()
@@ -124,10 +106,9 @@ public:
         constrained_.assign(body.size() * D, 0);
         for (const auto& p : boundary.prescribed)
             for (int i : p.nodes) constrained_[i * D + p.component] = 1;
-        if constexpr (TimeStepped<Model>) model.set_time_step(0.0);  // history: the initial state is reached instantly
         u_old_.fill(0.0);  // rate form: the pseudo step from the reference (header)
-        evaluate(1.0);
-        if constexpr (Committing<Model>) model.commit();
+        evaluate(0.0);
+        scene.commit();
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
         double mass = 0;  // [kg]
@@ -155,9 +136,8 @@ public:
         for (int d = 0; d < D; ++d) b_prev_.c[d] = b_.c[d];
         t += dt;
         ++step_count;
-        if constexpr (TimeStepped<Model>) model.set_time_step(dt);
         evaluate(dt);
-        if constexpr (Committing<Model>) model.commit();
+        scene.commit();
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < n; ++i) {
                 if (constrained_[i * D + d]) continue;
@@ -180,7 +160,7 @@ public:
         check_finite();
     }
 
-    Energies energies() { return detail::body_energies(model, bonds, body, y_, v, rho, external_work_); }
+    Energies energies() { return detail::body_energies(model, bonds, body, scene.positions(), v, rho, external_work_); }
 
     // Energy check of the guard; call every k steps (costs one energy evaluation).
     Energies check_energy()
@@ -207,55 +187,24 @@ public:
         }
     }
 
-    const Field<D>& positions() const { return y_; }
+    const Field<D>& positions() const { return scene.positions(); }
     const Field<D>& internal_force_density() const { return f_; }
     double initial_energy() const { return initial_energy_; }
 
 private:
-    Field<D> y_, f_, b_, f_prev_, u_old_, b_prev_;
-    Field<D> y_mid_, v_step_;                            // rate form only (header), else empty
+    Field<D> f_, b_, f_prev_, u_old_, b_prev_;
     std::vector<std::uint8_t> constrained_;
-    std::vector<std::uint8_t> detached_;                 // singular-node rule (damage/singular_nodes.hpp)
     double external_work_ = 0;
     double initial_energy_ = 0;
     double energy_floor_ = 0;                            // [J]
     static constexpr double roundoff_speed = 1e-10;      // [m/s], see header
 
-    // Forces and accelerations at u; dt: the step from u_old_ to u (rate-form stress update only).
+    // Forces and accelerations at u; dt: the step from u_old_ to u (0 in start()).
     void evaluate(double dt)
     {
-        add_fields(body.x, u, y_);
-        if (damage || micropotential) {
-            long broke = (damage ? damage->apply(bonds, y_) : 0) + (micropotential ? micropotential->apply(bonds) : 0);
-            if (damage && damage->detach_singular) broke += break_detached_bonds(bonds, detached_, damage->no_fail);
-            broken_bonds += broke;
-            // Models with bond-dependent per-node constants (PALS multipliers, LPS m_i and SCF_i)
-            // refresh them over the intact bonds; correspondence recomputes K in its point pass.
-            if constexpr (BondDependentModel<Model>)
-                if (broke > 0) model.recompute(bonds);
-        }
-        if constexpr (D == 3 && RateFormModel<Model>)
-            if (model.rate_form()) {  // rate form (header)
-                if (y_mid_.size() != body.size()) {
-                    y_mid_.resize(body.size());
-                    v_step_.resize(body.size());
-                }
-                for (int d = 0; d < D; ++d)
-                    for (std::size_t i = 0; i < body.size(); ++i) {
-                        y_mid_.c[d][i] = body.x.c[d][i] + 0.5 * (u_old_.c[d][i] + u.c[d][i]);  // [m]
-                        v_step_.c[d][i] = (u.c[d][i] - u_old_.c[d][i]) / dt;                  // [m/s]
-                    }
-                model.update_stress(bonds, y_mid_, v_step_, dt);
-            }
-        if (micropotential) {  // the force pass adds the step's increments (bond work, bond_loop.hpp)
-            internal_force(model, bonds, y_, f_, micropotential->template bond_work<Model>(bonds));
-            micropotential->accumulate(model, bonds, y_);
-        } else {
-            internal_force(model, bonds, y_, f_);
-            if (damage && damage->detach_singular) detached_nodes += mark_singular_nodes(model, body.size(), detached_);
-        }
+        broken_bonds += scene.internal_forces(u_old_, u, dt, f_);
         boundary.external(t, b_);
-        if (extra_force) extra_force(t, y_, v, b_);
+        if (scene.extra_force) scene.extra_force(t, scene.positions(), v, b_);
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < body.size(); ++i)
                 a.c[d][i] = constrained_[i * D + d] ? 0.0 : (f_.c[d][i] + b_.c[d][i]) / rho[i];

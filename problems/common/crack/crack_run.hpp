@@ -54,23 +54,23 @@ struct RunInfo {
 };
 
 // PMB model, s0 and the critical step for the body (unit thickness) and bonds.
-inline PMB make_pmb(const Material2D& mat, const Bonds& bonds, double delta, RunInfo& info)
+inline PMB make_pmb(const Material2D& mat, const Bonds& bonds, RunInfo& info)
 {
     const PMB::Params p{.material = Elastic::from_E_nu(mat.E, mat.nu()), .dim = 2, .plane = mat.plane};
-    PMB model(p, Influence{}, bonds);
+    PMB model(p, bonds);
     info.c = model.c;
-    info.s0 = s0_pmb(mat.Gc, mat.E, delta, 2, mat.plane);
+    info.s0 = s0_pmb(mat.Gc, mat.E, bonds.delta, 2, mat.plane);
     info.dt_crit = critical_step_silling_askari(bonds, std::vector<double>(bonds.nodes(), mat.rho), model.c).dt;
     return model;
 }
 
 // 3D: c = 18 K/(pi delta^4) = 12 E/(pi delta^4) at nu = 1/4 (spec/002 eq. 2.13a), s0 of eq. 2.15a.
-inline PMB make_pmb(const Material3D& mat, const Bonds& bonds, double delta, RunInfo& info)
+inline PMB make_pmb(const Material3D& mat, const Bonds& bonds, RunInfo& info)
 {
     const PMB::Params p{.material = Elastic::from_E_nu(mat.E, mat.nu()), .dim = 3};
-    PMB model(p, Influence{}, bonds);
+    PMB model(p, bonds);
     info.c = model.c;
-    info.s0 = s0_pmb(mat.Gc, mat.E, delta, 3, Plane::stress);
+    info.s0 = s0_pmb(mat.Gc, mat.E, bonds.delta, 3, Plane::stress);
     info.dt_crit = critical_step_silling_askari(bonds, std::vector<double>(bonds.nodes(), mat.rho), model.c).dt;
     return model;
 }
@@ -79,14 +79,14 @@ inline PMB make_pmb(const Material3D& mat, const Bonds& bonds, double delta, Run
 // every `every` steps and at the end; bonds touching no_fail nodes never break. Unstable propagates (files written by the sampler stay on disk).
 // show_progress: the progress line of core/timer.hpp on stderr (drivers pass !quick; it stays off in CI logs).
 template <int D, class Mat, class Sample>
-RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, double delta, const Boundary<D>& boundary,
+RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, const Boundary<D>& boundary,
                      double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {},
                      bool show_progress = false)
 {
     io::Timer timer;
     RunInfo info;
     if (!bonds.has_damage()) bonds.enable_damage();
-    PMB model = make_pmb(mat, bonds, delta, info);
+    PMB model = make_pmb(mat, bonds, info);
     const double dt_bound = std::min(dt_max, safety * info.dt_crit);
     info.steps = static_cast<long>(std::ceil(t_end / dt_bound * (1 - 1e-12)));  // 1e-12: t_end a multiple of dt_bound
     info.dt = t_end / info.steps;
@@ -94,7 +94,7 @@ RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, double d
     if (!no_fail.empty()) damage.protect(no_fail, body.size());
     Explicit<D, PMB> sim(body, bonds, model, mat.rho);
     sim.boundary = boundary;
-    sim.damage = &damage;
+    sim.scene.set_damage(damage);
     sim.start();
     sample(sim.t, point_damage(bonds), sim);
     const long energy_every = 100;  // stability guard cadence (steps)
@@ -110,11 +110,11 @@ RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, double d
     return info;
 }
 template <class Sample>
-RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat, double delta, const Boundary<2>& boundary,
+RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat, const Boundary<2>& boundary,
                         double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {},
                         bool show_progress = false)
 {
-    return run_fracture<2>(body, bonds, mat, delta, boundary, dt_max, safety, t_end, every, std::forward<Sample>(sample), no_fail,
+    return run_fracture<2>(body, bonds, mat, boundary, dt_max, safety, t_end, every, std::forward<Sample>(sample), no_fail,
                            show_progress);
 }
 

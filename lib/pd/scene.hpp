@@ -1,0 +1,120 @@
+// pd/scene.hpp -- what the forces on a body are made of, composed: the bonds (the single owner of
+// delta, the influence function and the volumes), a mechanical model, and only what the case uses of
+//   a damage rule      any type with the DamageRule protocol below (damage/critical_stretch.hpp,
+//                      damage/micropotential.hpp), attached by set_damage(rule);
+//   extra body forces  contact and impactors (bc/contact.hpp): extra_force(t, y, v, b) adds a force
+//                      density [N/m^3] to b.
+// The model's optional roles (kernel_concepts.hpp) are served here, so that an integrator asks the
+// scene for forces and commits and knows no model or rule by name:
+//   internal_forces(u_old, u, dt, f)  one force evaluation at y = x + u after a step dt [s] from u_old:
+//     1. the damage rule breaks bonds (a BondDependentModel then recomputes its per-node constants);
+//     2. a rate-form stress (RateFormModel) is advanced over the step at the mid-step configuration
+//        x + (u_old + u)/2 with v = (u - u_old)/dt (models/rate_form.hpp; dt = 0, a start, takes the
+//        pseudo step 1: the update depends on v dt only);
+//     3. the force f at y, a HistoryModel's trial state over dt from its committed history, with the
+//        rule's bond work when it integrates one (bond_loop.hpp, BondWork);
+//     4. the rule records the evaluation (micropotential positions, singular nodes).
+//   It returns the ordered bonds broken in 1.
+//   commit()  the trial history becomes the committed one (HistoryModel).
+//   energy_density()  W_i at the positions of the last evaluation [J/m^3].
+// DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
+// BondWork* bond_work(const Bonds&) (null: none); template <class Model> void record(const Model&,
+// const Bonds&, const Field<D>& y); long detached_nodes (singular-node rule, damage/singular_nodes.hpp).
+#pragma once
+#include "pd/bond_loop.hpp"
+#include "pd/core/bonds.hpp"
+#include "pd/core/field.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/kernel_concepts.hpp"
+#include "pd/models/rate_form.hpp"
+
+#include <functional>
+#include <stdexcept>
+#include <vector>
+
+namespace pd {
+
+template <class R, class Model, int D>
+concept DamageRule = requires(R& r, Bonds& b, const Field<D>& y, const Model& m) {
+    { r.break_bonds(b, y) } -> std::convertible_to<long>;
+    r.template bond_work<Model>(b);
+    r.template record<Model>(m, b, y);
+    r.detached_nodes;
+};
+
+template <int D, class Model>
+class Scene {
+public:
+    const Body<D>& body;
+    Bonds& bonds;
+    Model& model;
+    std::function<void(double t, const Field<D>& y, const Field<D>& v, Field<D>& b)> extra_force;  // see header; empty: none
+
+    Scene(const Body<D>& body, Bonds& bonds, Model& model) : body(body), bonds(bonds), model(model), y_(body.size()) {}
+
+    // Attaches a damage rule (kept by reference); bonds.enable_damage() is called if needed.
+    template <class Rule>
+        requires DamageRule<Rule, Model, D>
+    void set_damage(Rule& rule)
+    {
+        if (!bonds.has_damage()) bonds.enable_damage();
+        break_bonds_ = [&rule](Bonds& b, const Field<D>& y) { return rule.break_bonds(b, y); };
+        bond_work_ = [&rule](const Bonds& b) { return rule.template bond_work<Model>(b); };
+        record_ = [&rule, &m = model, &b = bonds](const Field<D>& y) { rule.template record<Model>(m, b, y); };
+        detached_ = [&rule] { return rule.detached_nodes; };
+    }
+    bool has_damage() const { return static_cast<bool>(break_bonds_); }
+    long detached_nodes() const { return detached_ ? detached_() : 0; }
+
+    // One force evaluation (header); returns the bonds broken before it.
+    long internal_forces(const Field<D>& u_old, const Field<D>& u, double dt, Field<D>& f)
+    {
+        if (!(dt >= 0)) throw std::invalid_argument("Scene: time step dt must be >= 0");
+        add_fields(body.x, u, y_);
+        long broke = 0;
+        if (break_bonds_) {
+            broke = break_bonds_(bonds, y_);
+            if constexpr (BondDependentModel<Model>)
+                if (broke > 0) model.recompute(bonds);  // correspondence recomputes K in its point pass
+        }
+        if constexpr (D == 3 && RateFormModel<Model>)
+            if (model.rate_form()) advance_rate_form(u_old, u, dt > 0 ? dt : 1.0);
+        const BondWork* work = bond_work_ ? bond_work_(bonds) : nullptr;
+        if constexpr (HistoryModel<Model, D>) internal_force(model, bonds, y_, dt, f, work);
+        else internal_force(model, bonds, y_, f, work);
+        if (record_) record_(y_);
+        return broke;
+    }
+
+    void commit()
+    {
+        if constexpr (HistoryModel<Model, D>) model.commit();
+    }
+
+    std::vector<double> energy_density() const { return model.energy_density(bonds, y_); }
+    const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
+
+private:
+    Field<D> y_;
+    Field<D> y_mid_, v_step_;  // rate form only, else empty
+    std::function<long(Bonds&, const Field<D>&)> break_bonds_;
+    std::function<const BondWork*(const Bonds&)> bond_work_;
+    std::function<void(const Field<D>&)> record_;
+    std::function<long()> detached_;
+
+    void advance_rate_form(const Field<D>& u_old, const Field<D>& u, double dt)
+    {
+        if (y_mid_.size() != body.size()) {
+            y_mid_.resize(body.size());
+            v_step_.resize(body.size());
+        }
+        for (int d = 0; d < D; ++d)
+            for (std::size_t i = 0; i < body.size(); ++i) {
+                y_mid_.c[d][i] = body.x.c[d][i] + 0.5 * (u_old.c[d][i] + u.c[d][i]);  // [m]
+                v_step_.c[d][i] = (u.c[d][i] - u_old.c[d][i]) / dt;                  // [m/s]
+            }
+        model.update_stress(bonds, y_mid_, v_step_, dt);
+    }
+};
+
+}  // namespace pd
