@@ -2,6 +2,9 @@
 //   sigma = K tr(eps) I + 2 G dev(eps),  dev(a) = a - tr(a)/3 I                     (Hooke)
 //   von Mises equivalent stress sigma_eff = sqrt(3/2 s:s), s = dev(sigma)    (spec/000b eq. 5.8)
 // Small-strain, 3D. K bulk and G shear modulus, as pd::Elastic (material.hpp).
+// Lame form in D = 2 or 3 dimensions, for a deformation gradient F (the correspondence laws):
+//   small strain eps = sym(F) - I,  Green-Lagrange strain E = (F^T F - I)/2,
+//   sigma (or S) = lambda tr(e) I + 2 G e  (2D: lambda of the plane condition, material.hpp).
 #pragma once
 #include <Eigen/Dense>
 
@@ -20,6 +23,13 @@ inline double von_mises(const Mat3& s)
     const Mat3 d = deviator(s);
     return std::sqrt(1.5 * (d.array() * d.array()).sum());
 }
+
+template <class M>
+M small_strain(const M& F) { return 0.5 * (F + F.transpose()) - M::Identity(); }
+template <class M>
+M green_lagrange(const M& F) { return 0.5 * (F.transpose() * F - M::Identity()); }
+template <class M>
+M lame_stress(const M& e, double lambda, double G) { return lambda * e.trace() * M::Identity() + 2 * G * e; }
 
 struct IsotropicElastic {
     double K = 0;  // bulk modulus [Pa]

@@ -36,6 +36,7 @@
 #include "pd/core/field.hpp"
 #include "pd/core/influence.hpp"
 #include "pd/core/lattice.hpp"
+#include "pd/laws/elastic.hpp"
 #include "pd/laws/flanagan_taylor.hpp"
 #include "pd/core/material.hpp"
 #include "pd/models/correspondence_chunks.hpp"
@@ -249,19 +250,10 @@ struct Correspondence {
         return N * Kinv[i];
     }
 
-    // Second Piola-Kirchhoff stress S = lambda tr(E) I + 2 G E, E = (F^T F - I)/2.
-    Mat svk_stress(const Mat& Fi) const
-    {
-        const Mat E = 0.5 * (Fi.transpose() * Fi - Mat::Identity());
-        return lambda * E.trace() * Mat::Identity() + 2 * par.material.G * E;
-    }
-
-    // Small-strain stress sigma = lambda tr(eps) I + 2 G eps, eps = sym(F) - I.
-    Mat linear_stress(const Mat& Fi) const
-    {
-        const Mat eps = 0.5 * (Fi + Fi.transpose()) - Mat::Identity();
-        return lambda * eps.trace() * Mat::Identity() + 2 * par.material.G * eps;
-    }
+    // The point laws (laws/elastic.hpp): Saint Venant-Kirchhoff S(E), E = (F^T F - I)/2, and the
+    // small-strain sigma(eps), eps = sym(F) - I, both lambda tr(e) I + 2 G e.
+    Mat svk_stress(const Mat& Fi) const { return laws::lame_stress(laws::green_lagrange(Fi), lambda, par.material.G); }
+    Mat linear_stress(const Mat& Fi) const { return laws::lame_stress(laws::small_strain(Fi), lambda, par.material.G); }
 
     // K^-1 (after damage, in the same pass over the bonds as F), F, then P and P K^-1.
     // Law::linear: P = sigma(F). Law::saint_venant_kirchhoff: P = F S, sigma = P F^T / J.
@@ -346,9 +338,7 @@ struct Correspondence {
         sync_node_matrices();
         std::vector<double> W(b.nodes(), 0.0);
         for (std::size_t i = 0; i < b.nodes(); ++i) {
-            const Mat eps = par.law == Law::saint_venant_kirchhoff
-                                ? Mat(0.5 * (F[i].transpose() * F[i] - Mat::Identity()))
-                                : Mat(0.5 * (F[i] + F[i].transpose()) - Mat::Identity());
+            const Mat eps = par.law == Law::saint_venant_kirchhoff ? laws::green_lagrange(F[i]) : laws::small_strain(F[i]);
             const Mat stress = par.law == Law::saint_venant_kirchhoff ? svk_stress(F[i]) : sigma[i];
             W[i] = 0.5 * (stress.array() * eps.array()).sum();
         }
