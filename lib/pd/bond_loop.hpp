@@ -39,12 +39,14 @@
 #include "pd/simd/translated_families.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 namespace pd {
 
@@ -228,6 +230,74 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     parallel_for(bonds.nodes(), node);
 }
 }  // namespace detail
+
+// No per-sum weights for stretch_sums: its one sum adds x itself.
+struct Unweighted {};
+
+// Point-pass sums over the deformed bond lengths (LPS dilatation, PALS theta and p): per node i,
+//   S_c = sum over the intact bonds k of i of  w(k)[c] x(k, |Y_k|)    (c < C; Unweighted: C = 1, S = sum x)
+// handed to done(i, S) as a std::array<double, C>. x is written once, generic in |Y|: double for the
+// per-node path (the bond loop's lanes and order; a broken bond's x is multiplied by intact = 0),
+// detail::vchunk for the chunk path (undamaged scenes, nodes of the runs' chunks, W at a time, each
+// lane in family order; node i0's bonds stand for the chunk's).
+template <int C, int D, class X, class W, class Done>
+void stretch_sums(const Bonds& b, const Field<D>& y, const StencilRuns& runs, X&& x, W&& w, Done&& done)
+{
+    constexpr bool unweighted = std::is_same_v<std::decay_t<W>, Unweighted>;
+    static_assert(!unweighted || C == 1, "stretch_sums: several sums need weights");
+    const int* partner = b.partner.data();
+    const double* yc[3] = {y.c[0].data(), D > 1 ? y.c[1].data() : nullptr, D > 2 ? y.c[2].data() : nullptr};
+    auto node = [&](std::size_t i, auto damaged) {
+        detail::LaneSum<C> sum;
+        detail::for_lanes<decltype(damaged)::value>(b.offset[i], b.offset[i + 1], b.intact.data(), [&](std::int64_t k, int l, double keep) {
+            const int j = partner[k];
+            const double Y0 = yc[0][j] - yc[0][i];
+            const double Y1 = D > 1 ? yc[1][j] - yc[1][i] : 0;
+            const double Y2 = D > 2 ? yc[2][j] - yc[2][i] : 0;
+            double v = x(k, std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2));
+            if constexpr (decltype(damaged)::value) v *= keep;
+            if constexpr (unweighted) sum.s[0][l] += v;
+            else {
+                const std::array<double, C> wk = w(k);
+                for (int c = 0; c < C; ++c) sum.s[c][l] += wk[c] * v;
+            }
+        });
+        std::array<double, C> S;
+        for (int c = 0; c < C; ++c) S[c] = sum.total(c);
+        done(i, S);
+    };
+    if (b.has_damage()) return parallel_for(b.nodes(), [&](std::size_t i) { node(i, std::true_type{}); });
+    auto plain = [&](std::size_t i) { node(i, std::false_type{}); };
+#ifdef PD_CHUNK_WIDTH
+    auto chunk = [&](std::size_t q) {
+        using detail::load_chunk;
+        const int i0 = runs.chunk_start[q];
+        detail::vchunk yi[D], acc[C] = {};
+        for (int d = 0; d < D; ++d) yi[d] = load_chunk(yc[d] + i0);
+        for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
+            const int j = partner[k];
+            detail::vchunk len2 = {};
+            for (int d = 0; d < D; ++d) {
+                const detail::vchunk Y = load_chunk(yc[d] + j) - yi[d];
+                len2 += Y * Y;
+            }
+            const detail::vchunk v = x(k, detail::sqrt_chunk(len2));
+            if constexpr (unweighted) acc[0] += v;
+            else {
+                const std::array<double, C> wk = w(k);
+                for (int c = 0; c < C; ++c) acc[c] += wk[c] * v;
+            }
+        }
+        for (int l = 0; l < detail::chunk_width; ++l) {
+            std::array<double, C> S;
+            for (int c = 0; c < C; ++c) S[c] = acc[c][l];
+            done(static_cast<std::size_t>(i0 + l), S);
+        }
+    };
+    if (for_chunks_then_rest(runs, b, chunk, plain)) return;
+#endif
+    parallel_for(b.nodes(), plain);
+}
 
 // The bond pass alone, with the model's state of its last point pass: f [N/m^3] and, when work is
 // given (damaged scenes only), the bond work of the pass (header).

@@ -45,6 +45,7 @@
 #include "pd/core/parallel.hpp"
 #include "pd/simd/translated_families.hpp"
 
+#include <array>
 #include <functional>
 #include <stdexcept>
 #include <vector>
@@ -138,12 +139,14 @@ struct LPS {
         scf_source = source;
     }
 
-    // theta_i = (D/m_i) sum_j omega |xi| e V_j over intact bonds (lane order of bond_loop.hpp).
+    // theta_i = (D/m_i) sum_j omega |xi| e V_j over intact bonds (stretch_sums, bond_loop.hpp).
     template <int D>
     void point_pass(const Bonds& b, const Field<D>& y)
     {
-        if (b.has_damage()) dilatation<true>(b, y);
-        else dilatation<false>(b, y);
+        const double* len = b.length.data();
+        const double* wv = wV.data();
+        stretch_sums<1>(b, y, runs, [&](std::int64_t k, const auto& ylen) { return wv[k] * len[k] * (ylen - len[k]); }, Unweighted{},
+                        [&](std::size_t i, const std::array<double, 1>& S) { set_dilatation(i, D * S[0]); });
     }
 
     // (t_i + t_j) V_j / |Y|: force on i is this times Y, with t = omega (D kappa theta |xi| / m
@@ -235,37 +238,6 @@ private:
         }
     }
 
-    template <bool Damaged, int D>
-    void dilatation(const Bonds& b, const Field<D>& y)
-    {
-        const std::int64_t* offset = b.offset.data();
-        const int* partner = b.partner.data();
-        const std::uint8_t* intact = b.intact.data();
-        const double* len = b.length.data();
-        const double* wv = wV.data();
-        const double* y0 = y.c[0].data();
-        const double* y1 = D > 1 ? y.c[1].data() : nullptr;
-        const double* y2 = D > 2 ? y.c[2].data() : nullptr;
-        auto node = [&](std::size_t i) {
-            detail::LaneSum<1> sum;
-            const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
-            detail::for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
-                const int j = partner[k];
-                const double Y0 = y0[j] - yi0;
-                const double Y1 = D > 1 ? y1[j] - yi1 : 0;
-                const double Y2 = D > 2 ? y2[j] - yi2 : 0;
-                double s = wv[k] * len[k] * (std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2) - len[k]);
-                if constexpr (Damaged) s *= keep;
-                sum.s[0][l] += s;
-            });
-            set_dilatation(i, D * sum.total(0));
-        };
-#ifdef PD_CHUNK_WIDTH
-        if constexpr (!Damaged)
-            if (for_chunks_then_rest(runs, b, [&](std::size_t q) { dilatation_chunk(b, y, runs.chunk_start[q]); }, node)) return;
-#endif
-        parallel_for(b.nodes(), node);
-    }
     // theta_i = sum / m_i, sum = D sum_j omega |xi| e V_j, and a_coef_i.
     void set_dilatation(std::size_t i, double sum)
     {
@@ -273,27 +245,6 @@ private:
         theta[i] = th;
         a_coef[i] = (p_coef[i] - alpha[i] / dim) * th;
     }
-#ifdef PD_CHUNK_WIDTH
-    // The same for the W nodes i0 + l of a chunk (node i0's |xi| and omega V_j, partners j + l).
-    template <int D>
-    void dilatation_chunk(const Bonds& b, const Field<D>& y, int i0)
-    {
-        using detail::load_chunk;
-        detail::vchunk yi[D], sum = {};
-        for (int d = 0; d < D; ++d) yi[d] = load_chunk(y.c[d].data() + i0);
-        for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
-            const int j = b.partner[k];
-            detail::vchunk len2 = {};
-            for (int d = 0; d < D; ++d) {
-                const detail::vchunk Y = load_chunk(y.c[d].data() + j) - yi[d];
-                len2 += Y * Y;
-            }
-            const double L = b.length[k];
-            sum += (wV[k] * L) * (detail::sqrt_chunk(len2) - L);
-        }
-        for (int l = 0; l < detail::chunk_width; ++l) set_dilatation(static_cast<std::size_t>(i0 + l), D * sum[l]);
-    }
-#endif
 };
 
 }  // namespace pd

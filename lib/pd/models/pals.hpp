@@ -85,13 +85,17 @@ struct PALS {
     double omega(std::size_t i, const Vec<3>& xi) const;
     double sigma(std::size_t i, const Vec<3>& xi) const;
 
-    // theta_i = (omega_i x)•e and p_i over intact bonds (lane order of bond_loop.hpp).
+    // theta_i = (omega_i x)•e and p_i over intact bonds (stretch_sums, bond_loop.hpp), x e = |xi| (|Y| - |xi|).
     template <int D>
     void point_pass(const Bonds& b, const Field<D>& y)
     {
         static_assert(D == 3, "PALS is a 3D model");
-        if (b.has_damage()) dilatation<true>(b, y);
-        else dilatation<false>(b, y);
+        const double* len = length;
+        const double* wi = w_i.data();
+        const double* si = s_i.data();
+        stretch_sums<2>(b, y, runs, [&](std::int64_t k, const auto& ylen) { return len[k] * (ylen - len[k]); },
+                        [&](std::int64_t k) { return std::array<double, 2>{wi[k], si[k]}; },
+                        [&](std::size_t i, const std::array<double, 2>& S) { set_dilatation(i, S[0], S[1]); });
     }
 
     // (t_i<xi> + t_j<-xi>) V_j / |Y|: force on i is this times Y, with
@@ -141,37 +145,6 @@ private:
     static constexpr double third = 1.0 / 3.0;
     const double* length = nullptr;  // |xi| of the bonds [m]
 
-    template <bool Damaged, int D>
-    void dilatation(const Bonds& b, const Field<D>& y)
-    {
-        const std::int64_t* offset = b.offset.data();
-        const int* partner = b.partner.data();
-        const std::uint8_t* intact = b.intact.data();
-        const double* len = length;
-        const double* wi = w_i.data();
-        const double* si = s_i.data();
-        const double* y0 = y.c[0].data();
-        const double* y1 = y.c[1].data();
-        const double* y2 = y.c[2].data();
-        auto node = [&](std::size_t i) {
-            detail::LaneSum<2> sum;
-            const double yi0 = y0[i], yi1 = y1[i], yi2 = y2[i];
-            detail::for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
-                const int j = partner[k];
-                const double Y0 = y0[j] - yi0, Y1 = y1[j] - yi1, Y2 = y2[j] - yi2;
-                double xe = len[k] * (std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2) - len[k]);  // x e [m^2]
-                if constexpr (Damaged) xe *= keep;
-                sum.s[0][l] += wi[k] * xe;
-                sum.s[1][l] += si[k] * xe;
-            });
-            set_dilatation(i, sum.total(0), sum.total(1));
-        };
-#ifdef PD_CHUNK_WIDTH
-        if constexpr (!Damaged)
-            if (for_chunks_then_rest(runs, b, [&](std::size_t q) { dilatation_chunk(b, y, runs.chunk_start[q]); }, node)) return;
-#endif
-        parallel_for(b.nodes(), node);
-    }
     // theta_i = (omega_i x)•e and p_i = (K + 2G m_sigma/9) theta - (2G/3)(sigma x)•e from the
     // two family sums (s_i already holds 2G sigma V).
     void set_dilatation(std::size_t i, double omega_xe, double sigma_xe)
@@ -179,29 +152,6 @@ private:
         theta[i] = omega_xe;
         p[i] = (K + 2 * G * m_sigma[i] / 9) * omega_xe - third * sigma_xe;
     }
-#ifdef PD_CHUNK_WIDTH
-    // The same for the W nodes i0 + l of a chunk (node i0's per-bond values, partners j + l).
-    template <int D>
-    void dilatation_chunk(const Bonds& b, const Field<D>& y, int i0)
-    {
-        using detail::load_chunk;
-        detail::vchunk yi[3], so = {}, ss = {};
-        for (int d = 0; d < 3; ++d) yi[d] = load_chunk(y.c[d].data() + i0);
-        for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
-            const int j = b.partner[k];
-            detail::vchunk len2 = {};
-            for (int d = 0; d < 3; ++d) {
-                const detail::vchunk Y = load_chunk(y.c[d].data() + j) - yi[d];
-                len2 += Y * Y;
-            }
-            const double L = length[k];
-            const detail::vchunk xe = L * (detail::sqrt_chunk(len2) - L);  // x e [m^2]
-            so += w_i[k] * xe;
-            ss += s_i[k] * xe;
-        }
-        for (int l = 0; l < detail::chunk_width; ++l) set_dilatation(static_cast<std::size_t>(i0 + l), so[l], ss[l]);
-    }
-#endif
 };
 
 }  // namespace pd
