@@ -1,14 +1,13 @@
-// Random material fields (lib/pd/random_field.hpp, spec/001_004 V5) and the per-bond critical
+// Random material fields (lib/pd/core/random_field.hpp, spec/001_004 V5) and the per-bond critical
 // stretch of CriticalStretch: reproducibility (seed, threads, order), sample moments against the
 // closed-form moments of the normal and Weibull laws, the floor, bond symmetry; random modulus and
-// density (random_material.hpp) in an Explicit PMB run.
+// density (modulus_factors, density_field) in an Explicit PMB run.
 // Statistical tolerances: z standard errors with z = 5 (two-sided false-alarm probability
 // 5.7e-7 for a fresh seed; the seeds here are fixed, so each test is deterministic).
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/core/parallel.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/core/random_field.hpp"
-#include "pd/core/random_material.hpp"
 #include "pd/time/verlet.hpp"
 
 #include <gtest/gtest.h>

@@ -217,13 +217,13 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     };
     // Chunks of translated families (translated_families.hpp), undamaged scenes only: W nodes per call.
     if constexpr (!Damaged && ChunkRunKernel<Model, D>) {
-        if (const StencilRuns* runs = model.chunks(bonds))
+        if (const TranslatedRuns* runs = model.chunks(bonds))
             if (for_runs_then_rest(*runs, bonds, [&](std::size_t p) { model.run_force(static_cast<int>(p), bonds, y, f); }, node)) return;
     }
 #ifdef PD_CHUNK_WIDTH
     if constexpr (!Damaged && is_ordinary<Model>() && OrdinaryChunkKernel<Model>) {
         static_assert(!NodeTermKernel<Model>, "ordinary chunk kernels have no node term");
-        if (const StencilRuns* runs = model.chunks(bonds))
+        if (const TranslatedRuns* runs = model.chunks(bonds))
             if (for_chunks_then_rest(*runs, bonds, [&](std::size_t q) { ordinary_chunk(model, bonds, runs->chunk_start[q], y, f); }, node)) return;
     }
 #endif
@@ -241,7 +241,7 @@ struct Unweighted {};
 // detail::vchunk for the chunk path (undamaged scenes, nodes of the runs' chunks, W at a time, each
 // lane in family order; node i0's bonds stand for the chunk's).
 template <int C, int D, class X, class W, class Done>
-void stretch_sums(const Bonds& b, const Field<D>& y, const StencilRuns& runs, X&& x, W&& w, Done&& done)
+void stretch_sums(const Bonds& b, const Field<D>& y, const TranslatedRuns& runs, X&& x, W&& w, Done&& done)
 {
     constexpr bool unweighted = std::is_same_v<std::decay_t<W>, Unweighted>;
     static_assert(!unweighted || C == 1, "stretch_sums: several sums need weights");

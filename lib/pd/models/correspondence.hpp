@@ -113,7 +113,7 @@ struct Correspondence {
     // Chunks of translated families (translated_families.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
     // the bond pass and the deformation sums take W nodes at once (correspondence_chunks.hpp), reading
     // A = P K^-1 and F from `soa` (18 arrays of soa_n doubles, written by point_pass).
-    StencilRuns runs;
+    TranslatedRuns runs;
     std::vector<double> soa;
     std::size_t soa_n = 0;  // stride of soa and kinv_soa [doubles] (detail::soa_stride)
 #ifdef PD_CHUNK_WIDTH
@@ -151,7 +151,7 @@ struct Correspondence {
                 for (int d = 0; d < D; ++d) xpad[4 * i + d] = x.c[d][i];
 #ifdef PD_CHUNK_WIDTH
             const std::initializer_list<const std::vector<double>*> xc{&x.c[0], &x.c[1], &x.c[2]};
-            runs = c_hg != 0 ? find_stencil_runs(b, detail::chunk_width, {&wV, &hg}, xc) : find_stencil_runs(b, detail::chunk_width, {&wV}, xc);
+            runs = c_hg != 0 ? find_translated_runs(b, detail::chunk_width, {&wV, &hg}, xc) : find_translated_runs(b, detail::chunk_width, {&wV}, xc);
             if (!runs.chunk_start.empty()) {
                 soa_n = detail::soa_stride(b.nodes());
                 soa.assign(18 * soa_n, 0.0);

@@ -44,7 +44,7 @@ struct ChunkTemplates {
     std::vector<TemplateBond> bond;
 };
 template <int D>
-ChunkTemplates chunk_templates(const StencilRuns& runs, const Bonds& b, const Field<D>& x, const std::vector<double>& wV,
+ChunkTemplates chunk_templates(const TranslatedRuns& runs, const Bonds& b, const Field<D>& x, const std::vector<double>& wV,
                                const std::vector<double>& hg)
 {
     ChunkTemplates t;
@@ -70,7 +70,7 @@ ChunkTemplates chunk_templates(const StencilRuns& runs, const Bonds& b, const Fi
 // whether every lane has K^-1 != 0 (else the stress goes node by node), and per node whether the
 // per-node kernels of an undamaged pass read its block (the nodes outside chunks and their partners).
 template <class Mat>
-void chunk_node_data(const StencilRuns& runs, const Bonds& b, const std::vector<Mat>& Kinv, std::vector<double>& kinv,
+void chunk_node_data(const TranslatedRuns& runs, const Bonds& b, const std::vector<Mat>& Kinv, std::vector<double>& kinv,
                      std::vector<std::uint8_t>& regular, std::vector<std::uint8_t>& block_read)
 {
     const std::size_t n = b.nodes(), ns = soa_stride(n);
@@ -163,7 +163,7 @@ Mat linear_stress_of(const Mat& F, double lambda, double G)
 // F, P K^-1, sigma and P = sigma per node from the chunk arrays, for the lanes of the regular chunks
 // that the chunked pass did not copy (Correspondence::sync_node_matrices).
 template <class Mat>
-void sync_chunk_matrices(const StencilRuns& runs, const std::vector<std::uint8_t>& regular, const std::vector<std::uint8_t>& copied,
+void sync_chunk_matrices(const TranslatedRuns& runs, const std::vector<std::uint8_t>& regular, const std::vector<std::uint8_t>& copied,
                          const double* soa, std::size_t n, double lambda, double G, std::vector<Mat>& F, std::vector<Mat>& A,
                          std::vector<Mat>& sigma, std::vector<Mat>& P)
 {

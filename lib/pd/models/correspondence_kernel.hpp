@@ -31,7 +31,7 @@ struct CorrespondenceKernel {
     const double* A;           // P K^-1 per node, D x D column-major blocks [Pa/m^5]
     const double* F;           // F per node, D x D column-major blocks [-] (Hourglass only)
     const double* blk;         // per node A and F, 4-padded columns (Correspondence::blocks; 3D)
-    const StencilRuns* runs;   // chunks of translated families (3D, AVX2/AVX-512), or null
+    const TranslatedRuns* runs;   // chunks of translated families (3D, AVX2/AVX-512), or null
     const double* soa;         // A and F per node as 18 arrays (chunks only)
     std::size_t soa_n;         // their stride
 #ifdef PD_CHUNK_WIDTH
@@ -80,7 +80,7 @@ struct CorrespondenceKernel {
     }
 #ifdef PD_CHUNK_WIDTH
     // Chunk hook of the bond loop (bond_loop.hpp): f of the nodes of run p's chunks, undamaged.
-    const StencilRuns* chunks(const Bonds& b) const { return runs && runs->fits(b) ? runs : nullptr; }
+    const TranslatedRuns* chunks(const Bonds& b) const { return runs && runs->fits(b) ? runs : nullptr; }
     void run_force(int p, const Bonds&, const Field<D>& y, Field<D>& f) const
         requires(D == 3)
     {

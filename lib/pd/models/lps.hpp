@@ -75,7 +75,7 @@ struct LPS {
     Params::WeightedVolume weighted_volume = Params::WeightedVolume::intact;
     // SCF from positions, re-evaluated by recompute (intact rule); empty for given factors.
     std::function<std::vector<double>(const Bonds&)> scf_source;
-    StencilRuns runs;              // chunks of translated families (translated_families.hpp)
+    TranslatedRuns runs;              // chunks of translated families (translated_families.hpp)
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
@@ -87,7 +87,7 @@ struct LPS {
         for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
         weighted_volumes(b);
 #ifdef PD_CHUNK_WIDTH
-        runs = find_stencil_runs(b, detail::chunk_width, {&b.length, &wV});
+        runs = find_translated_runs(b, detail::chunk_width, {&b.length, &wV});
 #endif
     }
 
@@ -102,7 +102,7 @@ struct LPS {
         if (factor.size() != wV.size()) throw std::invalid_argument("LPS::scale_bonds: one factor per bond expected");
         for (std::size_t k = 0; k < wV.size(); ++k) wV[k] *= factor[k];
 #ifdef PD_CHUNK_WIDTH
-        runs = find_stencil_runs(*bonds, detail::chunk_width, {&bonds->length, &wV});
+        runs = find_translated_runs(*bonds, detail::chunk_width, {&bonds->length, &wV});
 #endif
     }
 
@@ -171,14 +171,14 @@ struct LPS {
         const double* wV;      // omega V_j per bond [m^3]
         const double* a;       // a_coef per node [Pa/m^5]
         const double* alpha;   // alpha per node [Pa/m^5]
-        const StencilRuns* runs;
+        const TranslatedRuns* runs;
         double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
         {
             const double L = length[k];
             const double tij = L * (a[i] + a[j]) + (alpha[i] + alpha[j]) * (ylen - L);
             return tij * wV[k] / ylen;
         }
-        const StencilRuns* chunks(const Bonds& b) const { return runs->fits(b) && !runs->chunk_start.empty() ? runs : nullptr; }
+        const TranslatedRuns* chunks(const Bonds& b) const { return runs->fits(b) && !runs->chunk_start.empty() ? runs : nullptr; }
 #ifdef PD_CHUNK_WIDTH
         detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
         {

@@ -154,7 +154,7 @@ void PALS::recompute(const Bonds& b)
         m_sigma[i] = ms;
     });
 #ifdef PD_CHUNK_WIDTH
-    runs = b.has_damage() ? StencilRuns{} : find_stencil_runs(b, detail::chunk_width, {&b.length, &w_i, &w_j, &s_i, &s_j});
+    runs = b.has_damage() ? TranslatedRuns{} : find_translated_runs(b, detail::chunk_width, {&b.length, &w_i, &w_j, &s_i, &s_j});
 #endif
 }
 

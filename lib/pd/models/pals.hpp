@@ -67,7 +67,7 @@ struct PALS {
     std::vector<double> p;              // PALS pressure p_i, updated by point_pass [Pa]
     std::vector<double> w_i, w_j;       // omega_i<xi> V_j and omega_j<xi> V_j per bond i->j [1/m^2]
     std::vector<double> s_i, s_j;       // 2G sigma_i<xi> V_j and 2G sigma_j<xi> V_j per bond [Pa/m^2]
-    StencilRuns runs;                   // chunks of translated families (set by recompute)
+    TranslatedRuns runs;                   // chunks of translated families (set by recompute)
     int singular_nodes = 0;             // nodes with a singular system (see header), after recompute
     const Bonds* bonds = nullptr;
     const Field<3>* x = nullptr;        // reference positions of the body [m] (kept for recompute)
@@ -109,7 +109,7 @@ struct PALS {
         return tij / ylen;
     }
     // Chunk hooks of the bond loop (bond_loop.hpp): bond_scalar for the W nodes of a chunk.
-    const StencilRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
+    const TranslatedRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
 #ifdef PD_CHUNK_WIDTH
     detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
     {

@@ -75,8 +75,8 @@ struct PMB {
     }
 
     // Chunk hooks of the bond loop (bond_loop.hpp): bond_scalar for the W nodes of a chunk.
-    StencilRuns runs;
-    const StencilRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
+    TranslatedRuns runs;
+    const TranslatedRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
 #ifdef PD_CHUNK_WIDTH
     detail::vchunk chunk_scalar(int, std::int64_t k, int, const detail::vchunk& ylen) const
     {
@@ -108,7 +108,7 @@ private:
     {
         bonds_ = &b;
 #ifdef PD_CHUNK_WIDTH
-        runs = find_stencil_runs(b, detail::chunk_width, {&b.length, &coef});
+        runs = find_translated_runs(b, detail::chunk_width, {&b.length, &coef});
 #endif
     }
 };

@@ -27,7 +27,7 @@
 
 namespace pd {
 
-struct StencilRuns {
+struct TranslatedRuns {
     int width = 0;                  // W, nodes per chunk
     std::size_t nodes = 0, bonds = 0;  // sizes of the Bonds they were found on (a check for users)
     const int* partner_data = nullptr;  // and its partner array: runs fit only the very same Bonds
@@ -72,7 +72,7 @@ namespace detail {
 // unit(u) for the n_units work units (chunks, or runs of chunks), then node(i) for every node in no
 // chunk; each loop parallel when the scene has parallel_min_nodes nodes, as a loop over all nodes.
 template <bool Uneven, class Unit, class Node>
-bool units_then_rest(const StencilRuns& runs, const Bonds& b, std::size_t n_units, Unit&& unit, Node&& node)
+bool units_then_rest(const TranslatedRuns& runs, const Bonds& b, std::size_t n_units, Unit&& unit, Node&& node)
 {
     if (!runs.fits(b) || runs.chunk_start.empty()) return false;
     parallel_for_items<Uneven>(n_units, runs.nodes, [&](std::size_t u) { unit(u); });
@@ -84,22 +84,22 @@ bool units_then_rest(const StencilRuns& runs, const Bonds& b, std::size_t n_unit
 // The two loops of a chunked pass: chunk(q) for every chunk q, then node(i) for every node in no
 // chunk. Returns false, calling nothing, when the runs do not fit these bonds or have no chunk.
 template <class Chunk, class Node>
-bool for_chunks_then_rest(const StencilRuns& runs, const Bonds& b, Chunk&& chunk, Node&& node)
+bool for_chunks_then_rest(const TranslatedRuns& runs, const Bonds& b, Chunk&& chunk, Node&& node)
 {
     return detail::units_then_rest<false>(runs, b, runs.chunk_start.size(), chunk, node);
 }
 // The same with run(p) for every run p (all chunks of the run in one call; runs differ in length,
 // so they are scheduled dynamically), then the rest.
 template <class Run, class Node>
-bool for_runs_then_rest(const StencilRuns& runs, const Bonds& b, Run&& run, Node&& node)
+bool for_runs_then_rest(const TranslatedRuns& runs, const Bonds& b, Run&& run, Node&& node)
 {
     return detail::units_then_rest<true>(runs, b, runs.run_first.size(), run, node);
 }
 
-inline StencilRuns find_stencil_runs(const Bonds& b, int width, std::initializer_list<const std::vector<double>*> per_bond,
+inline TranslatedRuns find_translated_runs(const Bonds& b, int width, std::initializer_list<const std::vector<double>*> per_bond,
                                      std::initializer_list<const std::vector<double>*> per_node = {}, double tol = 1e-12)
 {
-    StencilRuns runs;
+    TranslatedRuns runs;
     runs.width = width;
     runs.nodes = b.nodes();
     runs.bonds = b.size();

@@ -79,11 +79,11 @@ std::size_t chunked_nodes(std::size_t rows, std::size_t translated)
 }  // namespace
 
 // 30 x 4 x 3 lattice, delta = 3 dx: nodes 3 .. 26 of every row (24 of 30) translate node 3's family.
-TEST(StencilRuns, RowsOfALatticeAndWhatBreaksThem)
+TEST(TranslatedRuns, RowsOfALatticeAndWhatBreaksThem)
 {
     auto body = box<3>({{0, 0, 0}}, {{30 * dx, 4 * dx, 3 * dx}}, dx);
     const Bonds b = build_bonds(body, 3 * dx);
-    const StencilRuns runs = find_stencil_runs(b, 8, {&b.length}, {&body.x.c[0], &body.x.c[1], &body.x.c[2]});
+    const TranslatedRuns runs = find_translated_runs(b, 8, {&b.length}, {&body.x.c[0], &body.x.c[1], &body.x.c[2]});
     EXPECT_EQ(runs.chunked_nodes(), 12u * 24u);
     EXPECT_EQ(runs.chunked_nodes() + runs.rest.size(), body.size());
     EXPECT_TRUE(runs.fits(b));
@@ -96,18 +96,18 @@ TEST(StencilRuns, RowsOfALatticeAndWhatBreaksThem)
     // A per-bond value that differs beyond the tolerance takes its node out of its run.
     std::vector<double> coef(b.size(), 1.0);
     coef[b.begin(runs.chunk_start[0] + 3)] = 1 + 1e-9;
-    const StencilRuns cut = find_stencil_runs(b, 8, {&coef});
+    const TranslatedRuns cut = find_translated_runs(b, 8, {&coef});
     EXPECT_LT(cut.chunked_nodes(), runs.chunked_nodes());
     // Irregular positions: the bond vectors differ, no node translates another.
     Field<3> moved = body.x;
     std::mt19937 gen(3);
     std::uniform_real_distribution<double> U(-1, 1);
     for (auto& c : moved.c) for (double& v : c) v += 1e-3 * dx * U(gen);
-    EXPECT_EQ(find_stencil_runs(b, 8, {}, {&moved.c[0], &moved.c[1], &moved.c[2]}).chunked_nodes(), 0u);
+    EXPECT_EQ(find_translated_runs(b, 8, {}, {&moved.c[0], &moved.c[1], &moved.c[2]}).chunked_nodes(), 0u);
 }
 
 // PMB: chunked force against the pair force written out, f_i = sum_j c omega V_j s Y/|Y|.
-TEST(StencilRuns, PMBChunkedForceEqualsPairForceFormula)
+TEST(TranslatedRuns, PMBChunkedForceEqualsPairForceFormula)
 {
     auto body = box<3>({{0, 0, 0}}, {{24 * dx, 4 * dx, 3 * dx}}, dx);
     const Bonds b = build_bonds(body, 3.05 * dx);
@@ -127,7 +127,7 @@ TEST(StencilRuns, PMBChunkedForceEqualsPairForceFormula)
 }
 
 // LPS in 3D (both passes chunked), with SCF, and in 2D; PALS (3D only).
-TEST(StencilRuns, LPSAndPALSChunkedForceEqualsPerNodeCode)
+TEST(TranslatedRuns, LPSAndPALSChunkedForceEqualsPerNodeCode)
 {
     const Elastic mat = Elastic::from_E_nu(100e9, 0.33);
     auto body = box<3>({{0, 0, 0}}, {{24 * dx, 4 * dx, 3 * dx}}, dx);
@@ -149,7 +149,7 @@ TEST(StencilRuns, LPSAndPALSChunkedForceEqualsPerNodeCode)
 // Bond factors that break the translation (scale_bonds: surface correction, random modulus) must
 // refresh the runs: with stale runs a chunk would apply its first node's coefficients to all lanes.
 // A copy of the bonds is not the object the runs were found on: no chunks, same forces.
-TEST(StencilRuns, ScaledBondsAndCopiedBondsKeepTheForces)
+TEST(TranslatedRuns, ScaledBondsAndCopiedBondsKeepTheForces)
 {
     auto body = box<3>({{0, 0, 0}}, {{24 * dx, 4 * dx, 3 * dx}}, dx);
     const Bonds b = build_bonds(body, 3.05 * dx);
