@@ -47,6 +47,7 @@
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
+#include <vector>
 
 namespace pd {
 
@@ -230,6 +231,22 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     parallel_for(bonds.nodes(), node);
 }
 }  // namespace detail
+
+// Bookkeeping sums that need no vector path (energy densities): per node i, in parallel, the sum
+// over its intact bonds k, in family order, of term(i, k); then finish(i, sum) gives node i's value.
+template <class Term, class Finish>
+std::vector<double> node_sums(const Bonds& b, Term&& term, Finish&& finish)
+{
+    std::vector<double> out(b.nodes(), 0.0);
+    const bool damaged = b.has_damage();
+    parallel_for(b.nodes(), [&](std::size_t i) {
+        double sum = 0;
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+            if (!damaged || b.intact[k]) sum += term(i, k);
+        out[i] = finish(i, sum);
+    });
+    return out;
+}
 
 // No per-sum weights for stretch_sums: its one sum adds x itself.
 struct Unweighted {};

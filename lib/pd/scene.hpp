@@ -63,7 +63,6 @@ public:
         record_ = [&rule, &m = model, &b = bonds](const Field<D>& y) { rule.template record<Model>(m, b, y); };
         detached_ = [&rule] { return rule.detached_nodes; };
     }
-    bool has_damage() const { return static_cast<bool>(break_bonds_); }
     long detached_nodes() const { return detached_ ? detached_() : 0; }
 
     // One force evaluation (header); returns the bonds broken before it.

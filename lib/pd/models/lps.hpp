@@ -198,18 +198,12 @@ struct LPS {
     template <int D>
     std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const
     {
-        std::vector<double> W(b.nodes(), 0.0);
-        parallel_for(b.nodes(), [&](std::size_t i) {
-            double dev = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (b.has_damage() && !b.intact[k]) continue;
-                const double L = b.length[k];
-                const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L / dim;
-                dev += wV[k] * ed * ed;
-            }
-            W[i] = 0.5 * kappa * theta[i] * theta[i] + 0.5 * alpha[i] * dev;
-        });
-        return W;
+        auto bond = [&](std::size_t i, std::int64_t k) {
+            const double L = b.length[k];
+            const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L / dim;
+            return wV[k] * ed * ed;
+        };
+        return node_sums(b, bond, [&](std::size_t i, double dev) { return 0.5 * kappa * theta[i] * theta[i] + 0.5 * alpha[i] * dev; });
     }
 
 private:

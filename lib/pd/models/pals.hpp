@@ -127,18 +127,12 @@ struct PALS {
     std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const
     {
         static_assert(D == 3, "PALS is a 3D model");
-        std::vector<double> W(b.nodes(), 0.0);
-        parallel_for(b.nodes(), [&](std::size_t i) {
-            double dev = 0;  // 2G (sigma e_d)•e_d
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (b.has_damage() && !b.intact[k]) continue;
-                const double L = b.length[k];
-                const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L * third;
-                dev += s_i[k] * ed * ed;
-            }
-            W[i] = 0.5 * K * theta[i] * theta[i] + 0.5 * dev;
-        });
-        return W;
+        auto bond = [&](std::size_t i, std::int64_t k) {  // summed: 2G (sigma e_d)•e_d
+            const double L = b.length[k];
+            const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L * third;
+            return s_i[k] * ed * ed;
+        };
+        return node_sums(b, bond, [&](std::size_t i, double dev) { return 0.5 * K * theta[i] * theta[i] + 0.5 * dev; });
     }
 
 private:

@@ -90,18 +90,13 @@ struct PlasticLPS {
     // the elastic deviatoric extension e_de - (e_dp - e_dp_c) = e - theta |xi|/3 - e_dp (trial e_dp).
     std::vector<double> energy_density(const Bonds& b, const Field<3>& y) const
     {
-        std::vector<double> W(b.nodes(), 0.0);
-        parallel_for(b.nodes(), [&](std::size_t i) {
-            const double th = lps.theta[i] / 3;
-            double dev = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (b.has_damage() && !b.intact[k]) continue;
-                const double e = deviatoric_extension(b, y, i, k, th, edp);
-                dev += b.omega[k] * e * e * b.volume[k];
-            }
-            W[i] = 0.5 * lps.kappa * lps.theta[i] * lps.theta[i] + 0.5 * lps.alpha[i] * dev;
+        auto bond = [&](std::size_t i, std::int64_t k) {
+            const double e = deviatoric_extension(b, y, i, k, lps.theta[i] / 3, edp);
+            return b.omega[k] * e * e * b.volume[k];
+        };
+        return node_sums(b, bond, [&](std::size_t i, double dev) {
+            return 0.5 * lps.kappa * lps.theta[i] * lps.theta[i] + 0.5 * lps.alpha[i] * dev;
         });
-        return W;
     }
 
     // (t_i + t_j) V_j / |Y| with t = omega (p_coef theta |xi| + t_d); omega V_j = wV.

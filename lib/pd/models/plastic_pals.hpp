@@ -93,18 +93,11 @@ struct PlasticPALS {
     // of the elastic deviatoric extension e - theta |xi|/3 - e_dp (trial e_dp).
     std::vector<double> energy_density(const Bonds& b, const Field<3>& y) const
     {
-        std::vector<double> W(b.nodes(), 0.0);
-        parallel_for(b.nodes(), [&](std::size_t i) {
-            const double th = pals.theta[i] / 3;
-            double dev = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (b.has_damage() && !b.intact[k]) continue;
-                const double e = deviatoric_extension(b, y, i, k, th, edp);
-                dev += pals.s_i[k] * e * e;
-            }
-            W[i] = 0.5 * pals.K * pals.theta[i] * pals.theta[i] + 0.5 * dev;
-        });
-        return W;
+        auto bond = [&](std::size_t i, std::int64_t k) {
+            const double e = deviatoric_extension(b, y, i, k, pals.theta[i] / 3, edp);
+            return pals.s_i[k] * e * e;
+        };
+        return node_sums(b, bond, [&](std::size_t i, double dev) { return 0.5 * pals.K * pals.theta[i] * pals.theta[i] + 0.5 * dev; });
     }
 
     // (t_i<xi> + t_j<-xi>) V_j / |Y|.

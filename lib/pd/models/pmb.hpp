@@ -13,6 +13,7 @@
 // the chunk path of the bond loop, W nodes at a time (chunk_scalar). Change coef only through
 // scale_bonds, which finds the runs again.
 #pragma once
+#include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
 #include "pd/simd/chunk_vector.hpp"
 #include "pd/core/field.hpp"
@@ -88,18 +89,12 @@ struct PMB {
     template <int D>
     std::vector<double> energy_density(const Bonds& bonds, const Field<D>& y) const
     {
-        std::vector<double> W(bonds.nodes(), 0.0);
-        parallel_for(bonds.nodes(), [&](std::size_t i) {
-            double sum = 0;
-            for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
-                if (bonds.has_damage() && !bonds.intact[k]) continue;
-                const double L = bonds.length[k];
-                const double s = (norm(y[bonds.partner[k]] - y[i]) - L) / L;
-                sum += 0.25 * coef[k] * L * L * s * s;
-            }
-            W[i] = sum;
-        });
-        return W;
+        auto bond = [&](std::size_t i, std::int64_t k) {
+            const double L = bonds.length[k];
+            const double s = (norm(y[bonds.partner[k]] - y[i]) - L) / L;
+            return 0.25 * coef[k] * L * L * s * s;
+        };
+        return node_sums(bonds, bond, [](std::size_t, double sum) { return sum; });
     }
 
 private:

@@ -122,17 +122,12 @@ struct ViscoelasticLPS {
     template <int D>
     std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const
     {
-        std::vector<double> W = lps.energy_density(b, y);
-        parallel_for(b.nodes(), [&](std::size_t i) {
-            double s = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (b.has_damage() && !b.intact[k]) continue;
-                const double r = ed_t[k] - edb_t[k];
-                s += lps.wV[k] * r * r;
-            }
-            W[i] += 0.5 * gamma_b * lps.alpha[i] * s;
-        });
-        return W;
+        const std::vector<double> W = lps.energy_density(b, y);
+        auto bond = [&](std::size_t, std::int64_t k) {
+            const double r = ed_t[k] - edb_t[k];
+            return lps.wV[k] * r * r;
+        };
+        return node_sums(b, bond, [&](std::size_t i, double s) { return W[i] + 0.5 * gamma_b * lps.alpha[i] * s; });
     }
 };
 
