@@ -1,6 +1,8 @@
 // The Lame point laws of laws/elastic.hpp against hand values: uniaxial stretch F = diag(1 + e, 1, 1)
 // gives eps_xx = e, E_xx = e + e^2/2 and sigma_xx = (lambda + 2G) e, sigma_yy = sigma_zz = lambda e; a
 // simple shear F = I + g e_x (x) e_y gives eps_xy = g/2, E_xy = g/2, E_yy = g^2/2 and sigma_xy = G g.
+// Tolerances: round-off only (a few operations each): 1e-15 on strains of order 1e-2, 1e-12 G on
+// stresses of order 1e-2 G.
 #include "pd/laws/elastic.hpp"
 
 #include <gtest/gtest.h>

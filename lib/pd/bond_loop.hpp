@@ -131,10 +131,12 @@ inline double bond_work(const BondWork& o, std::size_t i, std::int64_t k, int j,
 // f of the W nodes i0 + l of a chunk for an ordinary model: sum over node i0's bonds k (partners
 // j + l) of t Y, with Y = y_(j + l) - y_(i0 + l) and t = model.chunk_scalar(i0, k, j, |Y|), the
 // bond_scalar of the W lanes.
-template <int D, class Model>
-void ordinary_chunk(const Model& model, const Bonds& b, int i0, const Field<D>& y, Field<D>& f)
+// Calls bond(k, j, Y, |Y|) for the bonds k of node i0 (partners j), Y and |Y| of the W lanes of the
+// chunk (lane l: node i0 + l, partner j + l) as vectors: the one chunk traversal.
+template <int D, class Bond>
+void for_chunk_bonds(const Bonds& b, const Field<D>& y, int i0, Bond&& bond)
 {
-    vchunk yi[D], acc[D] = {};
+    vchunk yi[D];
     for (int d = 0; d < D; ++d) yi[d] = load_chunk(y.c[d].data() + i0);
     for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
         const int j = b.partner[k];
@@ -143,9 +145,18 @@ void ordinary_chunk(const Model& model, const Bonds& b, int i0, const Field<D>& 
             Y[d] = load_chunk(y.c[d].data() + j) - yi[d];
             len2 += Y[d] * Y[d];
         }
-        const vchunk t = model.chunk_scalar(i0, k, j, sqrt_chunk(len2));
-        for (int d = 0; d < D; ++d) acc[d] += t * Y[d];
+        bond(k, j, Y, sqrt_chunk(len2));
     }
+}
+
+template <int D, class Model>
+void ordinary_chunk(const Model& model, const Bonds& b, int i0, const Field<D>& y, Field<D>& f)
+{
+    vchunk acc[D] = {};
+    for_chunk_bonds(b, y, i0, [&](std::int64_t k, int j, const vchunk* Y, const vchunk& ylen) {
+        const vchunk t = model.chunk_scalar(i0, k, j, ylen);
+        for (int d = 0; d < D; ++d) acc[d] += t * Y[d];
+    });
     for (int d = 0; d < D; ++d) store_chunk(f.c[d].data() + i0, acc[d]);
 }
 #endif
@@ -287,24 +298,16 @@ void stretch_sums(const Bonds& b, const Field<D>& y, const TranslatedRuns& runs,
     auto plain = [&](std::size_t i) { node(i, std::false_type{}); };
 #ifdef PD_CHUNK_WIDTH
     auto chunk = [&](std::size_t q) {
-        using detail::load_chunk;
         const int i0 = runs.chunk_start[q];
-        detail::vchunk yi[D], acc[C] = {};
-        for (int d = 0; d < D; ++d) yi[d] = load_chunk(yc[d] + i0);
-        for (std::int64_t k = b.offset[i0]; k < b.offset[i0 + 1]; ++k) {
-            const int j = partner[k];
-            detail::vchunk len2 = {};
-            for (int d = 0; d < D; ++d) {
-                const detail::vchunk Y = load_chunk(yc[d] + j) - yi[d];
-                len2 += Y * Y;
-            }
-            const detail::vchunk v = x(k, detail::sqrt_chunk(len2));
+        detail::vchunk acc[C] = {};
+        detail::for_chunk_bonds(b, y, i0, [&](std::int64_t k, int, const detail::vchunk*, const detail::vchunk& ylen) {
+            const detail::vchunk v = x(k, ylen);
             if constexpr (unweighted) acc[0] += v;
             else {
                 const std::array<double, C> wk = w(k);
                 for (int c = 0; c < C; ++c) acc[c] += wk[c] * v;
             }
-        }
+        });
         for (int l = 0; l < detail::chunk_width; ++l) {
             std::array<double, C> S;
             for (int c = 0; c < C; ++c) S[c] = acc[c][l];

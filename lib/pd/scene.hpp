@@ -16,10 +16,9 @@
 //     4. the rule records the evaluation (micropotential positions, singular nodes).
 //   It returns the ordered bonds broken in 1.
 //   commit()  the trial history becomes the committed one (HistoryModel).
-//   energy_density()  W_i at the positions of the last evaluation [J/m^3].
 // DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
 // BondWork* bond_work(const Bonds&) (null: none); template <class Model> void record(const Model&,
-// const Bonds&, const Field<D>& y); long detached_nodes (singular-node rule, damage/singular_nodes.hpp).
+// const Bonds&, const Field<D>& y).
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
@@ -30,7 +29,6 @@
 
 #include <functional>
 #include <stdexcept>
-#include <vector>
 
 namespace pd {
 
@@ -39,7 +37,6 @@ concept DamageRule = requires(R& r, Bonds& b, const Field<D>& y, const Model& m)
     { r.break_bonds(b, y) } -> std::convertible_to<long>;
     r.template bond_work<Model>(b);
     r.template record<Model>(m, b, y);
-    r.detached_nodes;
 };
 
 template <int D, class Model>
@@ -61,9 +58,7 @@ public:
         break_bonds_ = [&rule](Bonds& b, const Field<D>& y) { return rule.break_bonds(b, y); };
         bond_work_ = [&rule](const Bonds& b) { return rule.template bond_work<Model>(b); };
         record_ = [&rule, &m = model, &b = bonds](const Field<D>& y) { rule.template record<Model>(m, b, y); };
-        detached_ = [&rule] { return rule.detached_nodes; };
     }
-    long detached_nodes() const { return detached_ ? detached_() : 0; }
 
     // One force evaluation (header); returns the bonds broken before it.
     long internal_forces(const Field<D>& u_old, const Field<D>& u, double dt, Field<D>& f)
@@ -90,7 +85,6 @@ public:
         if constexpr (HistoryModel<Model, D>) model.commit();
     }
 
-    std::vector<double> energy_density() const { return model.energy_density(bonds, y_); }
     const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
 
 private:
@@ -99,7 +93,6 @@ private:
     std::function<long(Bonds&, const Field<D>&)> break_bonds_;
     std::function<const BondWork*(const Bonds&)> bond_work_;
     std::function<void(const Field<D>&)> record_;
-    std::function<long()> detached_;
 
     void advance_rate_form(const Field<D>& u_old, const Field<D>& u, double dt)
     {

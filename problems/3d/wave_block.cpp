@@ -51,7 +51,7 @@ History integrate(Model& model, const pd::ImageBlock& blk, pd::Bonds& bonds, con
     pd::io::CsvWriter csv(energy_csv, {"t_s", "kinetic_J", "strain_J", "total_J", "shadow_J", "momentum_kg_m_s"});
     History h;
     auto sample = [&] {
-        const std::vector<double> W = sim.model.energy_density(bonds, sim.positions());
+        const std::vector<double> W = sim.scene.model.energy_density(bonds, sim.positions());
         double ke = 0, se = 0, a2 = 0, P = 0, mr[2] = {0, 0}, er[2] = {0, 0};
         for (int i : blk.interior) {
             const double V = blk.body.volume[i], v = sim.v.c[0][i], ai = sim.a.c[0][i];

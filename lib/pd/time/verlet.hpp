@@ -79,10 +79,7 @@ double constrained_kinetic(const Body<D>& body, const Field<D>& v, const std::ve
 template <int D, class Model>
 class Explicit {
 public:
-    Scene<D, Model> scene;             // forces (header); set_damage, extra_force
-    const Body<D>& body;
-    Bonds& bonds;
-    Model& model;
+    Scene<D, Model> scene;             // forces (header): body, bonds, model; set_damage, extra_force
     std::vector<double> rho;           // density per node [kg/m^3]
     Boundary<D> boundary;
     double energy_limit = 10;          // stability guard factor (see header)
@@ -93,9 +90,8 @@ public:
     long broken_bonds = 0;
 
     Explicit(const Scene<D, Model>& s, double density)
-        : scene(s), body(s.body), bonds(s.bonds), model(s.model), rho(body.size(), density),
-          u(body.size()), v(body.size()), a(body.size()), f_(body.size()), b_(body.size()),
-          f_prev_(body.size()), u_old_(body.size()), b_prev_(body.size())
+        : scene(s), rho(s.body.size(), density), u(s.body.size()), v(s.body.size()), a(s.body.size()), f_(s.body.size()),
+          b_(s.body.size()), f_prev_(s.body.size()), u_old_(s.body.size()), b_prev_(s.body.size())
     {
         if (!(density > 0)) throw std::invalid_argument("density rho must be positive");
     }
@@ -104,7 +100,7 @@ public:
     // Call after initial u, v and the boundary are set: forces and accelerations at t.
     void start()
     {
-        constrained_.assign(body.size() * D, 0);
+        constrained_.assign(scene.body.size() * D, 0);
         for (const auto& p : boundary.prescribed)
             for (int i : p.nodes) constrained_[i * D + p.component] = 1;
         u_old_.fill(0.0);  // rate form: the pseudo step from the reference (header)
@@ -113,14 +109,14 @@ public:
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
         double mass = 0;  // [kg]
-        for (std::size_t i = 0; i < body.size(); ++i) mass += rho[i] * body.volume[i];
+        for (std::size_t i = 0; i < scene.body.size(); ++i) mass += rho[i] * scene.body.volume[i];
         energy_floor_ = 0.5 * mass * roundoff_speed * roundoff_speed;
     }
 
     void step(double dt)
     {
         if (!(dt > 0)) throw std::invalid_argument("time step dt must be positive");
-        const std::size_t n = body.size();
+        const std::size_t n = scene.body.size();
         for (int d = 0; d < D; ++d) u_old_.c[d] = u.c[d];  // for the external work
         const double kinetic_constrained_old = constrained_kinetic();
         for (int d = 0; d < D; ++d)
@@ -155,13 +151,13 @@ public:
                 const double b_mid = 0.5 * (b_.c[d][i] + b_prev_.c[d][i]);
                 double load = b_mid;
                 if (constrained_[i * D + d]) load = -0.5 * (f_.c[d][i] + f_prev_.c[d][i]);  // reaction density
-                work += load * du * body.volume[i];
+                work += load * du * scene.body.volume[i];
             }
         external_work_ += work + constrained_kinetic() - kinetic_constrained_old;
         check_finite();
     }
 
-    Energies energies() { return detail::body_energies(model, bonds, body, scene.positions(), v, rho, external_work_); }
+    Energies energies() { return detail::body_energies(scene.model, scene.bonds, scene.body, scene.positions(), v, rho, external_work_); }
 
     // Energy check of the guard; call every k steps (costs one energy evaluation).
     Energies check_energy()
@@ -207,20 +203,20 @@ private:
         boundary.external(t, b_);
         if (scene.extra_force) scene.extra_force(t, scene.positions(), v, b_);
         for (int d = 0; d < D; ++d)
-            for (std::size_t i = 0; i < body.size(); ++i)
+            for (std::size_t i = 0; i < scene.body.size(); ++i)
                 a.c[d][i] = constrained_[i * D + d] ? 0.0 : (f_.c[d][i] + b_.c[d][i]) / rho[i];
     }
 
     double constrained_kinetic() const  // [J]
     {
-        return detail::constrained_kinetic(body, v, rho, [&](std::size_t i, int d) { return constrained_[i * D + d] != 0; });
+        return detail::constrained_kinetic(scene.body, v, rho, [&](std::size_t i, int d) { return constrained_[i * D + d] != 0; });
     }
 
     int fastest_node() const
     {
         int best = 0;
         double vmax = -1;
-        for (std::size_t i = 0; i < body.size(); ++i) {
+        for (std::size_t i = 0; i < scene.body.size(); ++i) {
             double v2 = 0;
             for (int d = 0; d < D; ++d) v2 += v.c[d][i] * v.c[d][i];
             if (!std::isfinite(v2)) return static_cast<int>(i);
@@ -232,7 +228,7 @@ private:
     void check_finite() const
     {
         for (int d = 0; d < D; ++d)
-            for (std::size_t i = 0; i < body.size(); ++i)
+            for (std::size_t i = 0; i < scene.body.size(); ++i)
                 if (!std::isfinite(u.c[d][i]) || !std::isfinite(v.c[d][i])) {
                     std::ostringstream m;
                     m << "unstable at step " << step_count << " (t = " << t << " s): non-finite displacement or velocity at node " << i;
