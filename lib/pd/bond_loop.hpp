@@ -27,7 +27,7 @@
 // without that array (if constexpr).
 // Summation order, fixed so that it depends neither on the threads nor on the vectoriser: bond
 // begin(i) + l + 8 m of node i goes to partial sum l (l < lanes = 8), and the 8 partial sums are
-// added pairwise at the end. The 8-bond inner loop has a fixed trip count, so GCC turns it into
+// added pairwise at the end (lane_sums, the per-node traversal under every per-node pass). The 8-bond inner loop has a fixed trip count, so GCC turns it into
 // SIMD code (y_j gathered, vsqrtpd, vdivpd) -- provided sqrt need not set errno, i.e. the build
 // uses -fno-math-errno; otherwise the loop stays scalar, with 8 independent partial sums.
 #pragma once
@@ -99,6 +99,23 @@ inline void for_lanes(std::int64_t kb, std::int64_t ke, const std::uint8_t* inta
     for (int l = 0; k < ke; ++k, ++l) bond(k, l, Damaged ? static_cast<double>(intact[k]) : 1.0);
 }
 
+// THE family traversal of the per-node path: C sums over the bonds of node i, bond k = begin(i) +
+// l + 8 m into partial sum l, the partial sums reduced pairwise (LaneSum). term(k, j, keep, add)
+// gets bond k (partner j, keep = intact[k] as a double, 1 when not Damaged) and calls add(c, v) for
+// its terms, which it has multiplied by keep where the bond is to count as broken.
+template <int C, bool Damaged, class Term>
+inline std::array<double, C> lane_sums(const Bonds& b, std::size_t i, Term&& term)
+{
+    LaneSum<C> sum;
+    const int* partner = b.partner.data();
+    for_lanes<Damaged>(b.offset[i], b.offset[i + 1], b.intact.data(), [&](std::int64_t k, int l, double keep) {
+        term(k, partner[k], keep, [&](int c, double v) { sum.s[c][l] += v; });
+    });
+    std::array<double, C> S;
+    for (int c = 0; c < C; ++c) S[c] = sum.total(c);
+    return S;
+}
+
 // True unless the kernel is a NonOrdinaryKernel.
 template <class Model>
 constexpr bool is_ordinary()
@@ -167,9 +184,6 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
     static_assert(!Out || Damaged, "the bond work is for damaged scenes (micropotential)");
     if constexpr (Out)
         if (out->components != (is_ordinary<Model>() ? 1 : D)) throw std::invalid_argument("bond_pass: BondWork components do not match the model");
-    const std::int64_t* offset = bonds.offset.data();
-    const int* partner = bonds.partner.data();
-    const std::uint8_t* intact = bonds.intact.data();
     const double* y0 = y.c[0].data();
     const double* y1 = D > 1 ? y.c[1].data() : nullptr;
     const double* y2 = D > 2 ? y.c[2].data() : nullptr;
@@ -178,11 +192,9 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
             const Vec<D> fi = model.template family_force<Damaged, Out>(i, bonds, y, out);
             for (int d = 0; d < D; ++d) f.c[d][i] = fi[d];
         } else {
-            LaneSum<D> sum;
             double w_max = std::numeric_limits<double>::lowest();  // Out: over the bonds with j > i
             const double yi0 = y0[i], yi1 = D > 1 ? y1[i] : 0, yi2 = D > 2 ? y2[i] : 0;
-            for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
-                const int j = partner[k];
+            const std::array<double, D> sum = lane_sums<D, Damaged>(bonds, i, [&](std::int64_t k, int j, double keep, auto&& add) {
                 const double Y0 = y0[j] - yi0;
                 const double Y1 = D > 1 ? y1[j] - yi1 : 0;
                 const double Y2 = D > 2 ? y2[j] - yi2 : 0;
@@ -198,9 +210,9 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                             const double Yk[3] = {Y0, Y1, Y2};
                             w_max = std::max(w_max, bond_work<D, true>(*out, i, k, j, Yk, &t, keep));
                         }
-                    sum.s[0][l] += t * Y0;
-                    if constexpr (D > 1) sum.s[1][l] += t * Y1;
-                    if constexpr (D > 2) sum.s[2][l] += t * Y2;
+                    add(0, t * Y0);
+                    if constexpr (D > 1) add(1, t * Y1);
+                    if constexpr (D > 2) add(2, t * Y2);
                 } else {
                     Vec<D> Y;
                     Y[0] = Y0;
@@ -208,7 +220,7 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
                     if constexpr (D > 2) Y[2] = Y2;
                     Vec<D> fk = model.bond_force(i, k, j, Y);  // must be finite for broken bonds too
                     if constexpr (Damaged) fk *= keep;
-                    for (int d = 0; d < D; ++d) sum.s[d][l] += fk[d];
+                    for (int d = 0; d < D; ++d) add(d, fk[d]);
                     if constexpr (Out)
                         if (static_cast<std::size_t>(j) > i) {
                             if constexpr (NodeTermKernel<Model>) fk += keep * model.node_share(i, k, j);
@@ -220,9 +232,9 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
             });
             if constexpr (NodeTermKernel<Model>) {
                 const Vec<D> fn = model.node_force(i);
-                for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d) + fn[d];
+                for (int d = 0; d < D; ++d) f.c[d][i] = sum[d] + fn[d];
             } else {
-                for (int d = 0; d < D; ++d) f.c[d][i] = sum.total(d);
+                for (int d = 0; d < D; ++d) f.c[d][i] = sum[d];
             }
             if constexpr (Out) out->w_max[i] = w_max;
         }
@@ -243,17 +255,15 @@ void bond_pass(const Model& model, const Bonds& bonds, const Field<D>& y, Field<
 }
 }  // namespace detail
 
-// Bookkeeping sums that need no vector path (energy densities): per node i, in parallel, the sum
-// over its intact bonds k, in family order, of term(i, k); then finish(i, sum) gives node i's value.
+// Bookkeeping sums (energy densities): per node i, in parallel, the sum over its intact bonds k, in
+// family order, of term(i, k); then finish(i, sum) gives node i's value.
 template <class Term, class Finish>
 std::vector<double> node_sums(const Bonds& b, Term&& term, Finish&& finish)
 {
     std::vector<double> out(b.nodes(), 0.0);
-    const bool damaged = b.has_damage();
     parallel_for(b.nodes(), [&](std::size_t i) {
         double sum = 0;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-            if (!damaged || b.intact[k]) sum += term(i, k);
+        for_intact_bonds(b, i, [&](std::int64_t k, int) { sum += term(i, k); });
         out[i] = finish(i, sum);
     });
     return out;
@@ -273,26 +283,20 @@ void stretch_sums(const Bonds& b, const Field<D>& y, const TranslatedRuns& runs,
 {
     constexpr bool unweighted = std::is_same_v<std::decay_t<W>, Unweighted>;
     static_assert(!unweighted || C == 1, "stretch_sums: several sums need weights");
-    const int* partner = b.partner.data();
     const double* yc[3] = {y.c[0].data(), D > 1 ? y.c[1].data() : nullptr, D > 2 ? y.c[2].data() : nullptr};
     auto node = [&](std::size_t i, auto damaged) {
-        detail::LaneSum<C> sum;
-        detail::for_lanes<decltype(damaged)::value>(b.offset[i], b.offset[i + 1], b.intact.data(), [&](std::int64_t k, int l, double keep) {
-            const int j = partner[k];
+        done(i, detail::lane_sums<C, decltype(damaged)::value>(b, i, [&](std::int64_t k, int j, double keep, auto&& add) {
             const double Y0 = yc[0][j] - yc[0][i];
             const double Y1 = D > 1 ? yc[1][j] - yc[1][i] : 0;
             const double Y2 = D > 2 ? yc[2][j] - yc[2][i] : 0;
             double v = x(k, std::sqrt(Y0 * Y0 + Y1 * Y1 + Y2 * Y2));
             if constexpr (decltype(damaged)::value) v *= keep;
-            if constexpr (unweighted) sum.s[0][l] += v;
+            if constexpr (unweighted) add(0, v);
             else {
                 const std::array<double, C> wk = w(k);
-                for (int c = 0; c < C; ++c) sum.s[c][l] += wk[c] * v;
+                for (int c = 0; c < C; ++c) add(c, wk[c] * v);
             }
-        });
-        std::array<double, C> S;
-        for (int c = 0; c < C; ++c) S[c] = sum.total(c);
-        done(i, S);
+        }));
     };
     if (b.has_damage()) return parallel_for(b.nodes(), [&](std::size_t i) { node(i, std::true_type{}); });
     auto plain = [&](std::size_t i) { node(i, std::false_type{}); };

@@ -58,6 +58,17 @@ struct Bonds {
     }
 };
 
+// The family traversal in family order, for set-up and bookkeeping that need no vector path (the
+// force, dilatation and heat passes take bond_loop.hpp's lane_sums): bond(k, j) for every intact
+// bond k of node i (partner j), k ascending.
+template <class Bond>
+inline void for_intact_bonds(const Bonds& b, std::size_t i, Bond&& bond)
+{
+    const bool damaged = b.has_damage();
+    for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+        if (!damaged || b.intact[k]) bond(k, b.partner[k]);
+}
+
 struct BondOptions {
     Influence influence{};
     PartialVolume partial_volume = PartialVolume::none;

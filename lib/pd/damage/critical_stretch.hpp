@@ -99,13 +99,11 @@ private:
 #pragma omp parallel for schedule(static) reduction(+ : broken)
         for (long i = 0; i < static_cast<long>(b.nodes()); ++i) {
             if (!no_fail.empty() && no_fail[i]) continue;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (!b.intact[k]) continue;
-                const int j = b.partner[k];
-                if (!no_fail.empty() && no_fail[j]) continue;
+            for_intact_bonds(b, i, [&](std::int64_t k, int j) {
+                if (!no_fail.empty() && no_fail[j]) return;
                 const double L = b.length[k];
                 if ((norm(y[j] - y[i]) - L) / L > s0_of(k)) { b.intact[k] = 0; ++broken; }
-            }
+            });
         }
         return broken;
     }

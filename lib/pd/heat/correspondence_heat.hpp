@@ -64,7 +64,6 @@ struct CorrespondenceHeat {
         for (int d = 0; d < D; ++d) r(d) = x.c[d][j] - x.c[d][i];
         return r;
     }
-    bool intact(const Bonds& b, std::int64_t k) const { return !b.has_damage() || b.intact[k]; }
 
     void shape_tensors(const Bonds& b)
     {
@@ -88,8 +87,7 @@ struct CorrespondenceHeat {
         if (b.has_damage()) shape_tensors(b);
         parallel_for(b.nodes(), [&](std::size_t i) {
             Col sum = Col::Zero();
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-                if (intact(b, k)) sum += b.omega[k] * b.volume[k] * (theta[b.partner[k]] - theta[i]) * xi(i, b.partner[k]);
+            for_intact_bonds(b, i, [&](std::int64_t k, int j) { sum += b.omega[k] * b.volume[k] * (theta[j] - theta[i]) * xi(i, j); });
             g[i] = Kinv[i] * sum;
             a[i] = Kinv[i] * ((par.k * s(i)) * g[i]);
         });
@@ -119,18 +117,15 @@ struct CorrespondenceHeat {
         // dg_i/dtheta_l = G_il = K_i^-1 omega xi_il V_l (l in family of i), dg_i/dtheta_i = -sum_l G_il.
         auto add_gradient = [&](std::size_t row, std::size_t node, const Col& c) {  // c . g_node
             Col sum = Col::Zero();
-            for (std::int64_t k = b.begin(node); k < b.end(node); ++k) {
-                if (!intact(b, k)) continue;
-                const Col G = Kinv[node] * (b.omega[k] * b.volume[k] * xi(node, b.partner[k]));
-                t.emplace_back(int(row), b.partner[k], c.dot(G));
+            for_intact_bonds(b, node, [&](std::int64_t k, int l) {
+                const Col G = Kinv[node] * (b.omega[k] * b.volume[k] * xi(node, l));
+                t.emplace_back(int(row), l, c.dot(G));
                 sum += G;
-            }
+            });
             t.emplace_back(int(row), int(node), -c.dot(sum));
         };
         for (std::size_t i = 0; i < b.nodes(); ++i)
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (!intact(b, k)) continue;
-                const int j = b.partner[k];
+            for_intact_bonds(b, i, [&](std::int64_t k, int j) {
                 const Col e = xi(i, j);
                 const double V = b.volume[k];
                 // omega V (a_i + a_j) . xi, a = k s K^-1 g
@@ -144,7 +139,7 @@ struct CorrespondenceHeat {
                     add_gradient(i, i, -c * e);
                     add_gradient(i, j, -c * e);
                 }
-            }
+            });
     }
 };
 

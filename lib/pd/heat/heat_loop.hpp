@@ -1,6 +1,6 @@
-// THE heat loop: nodal heat-flow density Q_i = sum_j h_ij V_j over the intact bonds of i [W/m^3],
-// the scalar sibling of the force loop in bond_loop.hpp (same owner-computes, gather-only rule and
-// the same fixed 8-lane summation order, so results are bit-identical for any number of threads).
+// The heat loop: nodal heat-flow density Q_i = sum_j h_ij V_j over the intact bonds of i [W/m^3],
+// on the family traversal of the force loop (bond_loop.hpp, lane_sums: owner computes, the fixed
+// 8-lane summation order, so results are bit-identical for any number of threads).
 // A heat model supplies
 //   static constexpr bool has_point_pass;                   // e.g. temperature gradients first
 //   void point_pass(const Bonds&, const std::vector<double>& theta);   // only if has_point_pass
@@ -21,20 +21,13 @@ namespace detail {
 template <bool Damaged, class Model>
 void heat_pass(const Model& model, const Bonds& bonds, const std::vector<double>& theta, std::vector<double>& Q)
 {
-    const std::int64_t* offset = bonds.offset.data();
-    const int* partner = bonds.partner.data();
-    const std::uint8_t* intact = bonds.intact.data();
     const double* th = theta.data();
     parallel_for(bonds.nodes(), [&](std::size_t i) {
-        LaneSum<1> sum;
-        const double ti = th[i];
-        for_lanes<Damaged>(offset[i], offset[i + 1], intact, [&](std::int64_t k, int l, double keep) {
-            const int j = partner[k];
-            double h = model.bond_heat(i, k, j, th[j] - ti);
+        Q[i] = lane_sums<1, Damaged>(bonds, i, [&](std::int64_t k, int j, double keep, auto&& add) {
+            double h = model.bond_heat(i, k, j, th[j] - th[i]);
             if constexpr (Damaged) h *= keep;
-            sum.s[0][l] += h;
-        });
-        Q[i] = sum.total(0);
+            add(0, h);
+        })[0];
     });
 }
 }  // namespace detail

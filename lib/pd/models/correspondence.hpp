@@ -180,8 +180,6 @@ struct Correspondence {
     void family_sums(const Bonds& b, std::size_t i, const std::array<const Field<D>*, NZ>& z, Mat* N, Mat* K, Col* m) const
     {
         constexpr int C = NZ * DD + (WithK ? DK + D : 0);
-        detail::LaneSum<C> sum;
-        const int* partner = b.partner.data();
         const double* wv = wV.data();
         const double* xc[D];
         double x_i[D];
@@ -190,8 +188,7 @@ struct Correspondence {
         double z_i[NZ > 0 ? NZ : 1][D];
         for (int q = 0; q < NZ; ++q)
             for (int d = 0; d < D; ++d) { zc[q][d] = z[q]->c[d].data(); z_i[q][d] = zc[q][d][i]; }
-        detail::for_lanes<Damaged>(b.offset[i], b.offset[i + 1], b.intact.data(), [&](std::int64_t k, int l, double keep) {
-            const int j = partner[k];
+        const std::array<double, C> S = detail::lane_sums<C, Damaged>(b, i, [&](std::int64_t k, int j, double keep, auto&& add) {
             double w = wv[k];
             if constexpr (Damaged) w *= keep;
             double e[D], we[D];
@@ -199,23 +196,23 @@ struct Correspondence {
             for (int q = 0; q < NZ; ++q)
                 for (int a = 0; a < D; ++a) {
                     const double dz = zc[q][a][j] - z_i[q][a];
-                    for (int c = 0; c < D; ++c) sum.s[q * DD + a + D * c][l] += dz * we[c];
+                    for (int c = 0; c < D; ++c) add(q * DD + a + D * c, dz * we[c]);
                 }
             if constexpr (WithK) {
                 int t = NZ * DD;
                 for (int a = 0; a < D; ++a)
-                    for (int c = a; c < D; ++c) sum.s[t++][l] += e[a] * we[c];
-                for (int a = 0; a < D; ++a) sum.s[t++][l] += we[a];
+                    for (int c = a; c < D; ++c) add(t++, e[a] * we[c]);
+                for (int a = 0; a < D; ++a) add(t++, we[a]);
             }
         });
         for (int q = 0; q < NZ; ++q)
             for (int a = 0; a < D; ++a)
-                for (int c = 0; c < D; ++c) N[q](a, c) = sum.total(q * DD + a + D * c);
+                for (int c = 0; c < D; ++c) N[q](a, c) = S[q * DD + a + D * c];
         if constexpr (WithK) {
             int t = NZ * DD;
             for (int a = 0; a < D; ++a)
-                for (int c = a; c < D; ++c) (*K)(a, c) = (*K)(c, a) = sum.total(t++);
-            for (int a = 0; a < D; ++a) (*m)(a) = sum.total(t++);
+                for (int c = a; c < D; ++c) (*K)(a, c) = (*K)(c, a) = S[t++];
+            for (int a = 0; a < D; ++a) (*m)(a) = S[t++];
         }
     }
 

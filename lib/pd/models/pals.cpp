@@ -106,9 +106,8 @@ void PALS::recompute(const Bonds& b)
     parallel_for(b.nodes(), [&](std::size_t i) {
         Mat6 A = Mat6::Zero(), Ad = Mat6::Zero();
         Vec6 rhs = trace_H, rhs_d = devH_devH;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            if (b.has_damage() && !b.intact[k]) continue;
-            const Vec<3> h = xi_hat(i, b.partner[k]);
+        for_intact_bonds(b, i, [&](std::int64_t k, int j) {
+            const Vec<3> h = xi_hat(i, j);
             const double V = b.volume[k] / d3;
             const double r = b.length[k];
             const Vec6 q = dilatation_basis(h[0], h[1], h[2]);
@@ -117,7 +116,7 @@ void PALS::recompute(const Bonds& b)
             Ad.noalias() += V * g * g.transpose();       // sum eps_n^2 eps_j^2 V
             rhs -= (omega0_base(r, delta) * w0 * V) * q;  // - (omega0 x)•e_j
             rhs_d -= (sigma0_base(r, delta) * s0 * V) * g;  // - (sigma0 eps_j)•eps_j
-        }
+        });
         const bool ok_w = solve6(A, rhs, lambda[i]);
         const bool ok_s = solve6(Ad, rhs_d, tau[i]);
         singular[i] = !(ok_w && ok_s);

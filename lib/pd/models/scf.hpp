@@ -56,7 +56,6 @@ inline double scf_shear_constant(int dim) { return dim == 3 ? 15.0 : dim == 2 ? 
 template <int D>
 double scf_mode_norm(const Bonds& b, const Field<D>& x, std::size_t i, int a, int c, double gamma, double m)
 {
-    const bool damaged = b.has_damage();
     const Vec<D> xi_i = x[i];
     // e = |Y| - |xi| for bond k, with Y = xi + u(xi).
     auto extension = [&](std::int64_t k) {
@@ -68,15 +67,13 @@ double scf_mode_norm(const Bonds& b, const Field<D>& x, std::size_t i, int a, in
         return (dot(Y, Y) - dot(xi, xi)) / (l + L);
     };
     double sum_theta = 0;
-    for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-        if (!damaged || b.intact[k]) sum_theta += b.omega[k] * b.length[k] * extension(k) * b.volume[k];
+    for_intact_bonds(b, i, [&](std::int64_t k, int) { sum_theta += b.omega[k] * b.length[k] * extension(k) * b.volume[k]; });
     const double theta = D * sum_theta / m;  // (4.8) with the node's own m
     double N = 0;
-    for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-        if (damaged && !b.intact[k]) continue;
+    for_intact_bonds(b, i, [&](std::int64_t k, int) {
         const double ed = extension(k) - theta * b.length[k] / D;  // (4.9), e_d = e - theta |xi| / D
         N += b.omega[k] * ed * ed * b.volume[k];
-    }
+    });
     return N;
 }
 

@@ -58,8 +58,7 @@ Eigen::Matrix<double, D, D> shape_tensor(const Bonds& b, const Field<D>& x, std:
         return e;
     };
     Mat K = Mat::Zero();
-    for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-        if (!b.has_damage() || b.intact[k]) K += b.omega[k] * b.volume[k] * xi(b.partner[k]) * xi(b.partner[k]).transpose();
+    for_intact_bonds(b, i, [&](std::int64_t k, int j) { K += b.omega[k] * b.volume[k] * xi(j) * xi(j).transpose(); });
     return K;
 }
 

@@ -197,9 +197,7 @@ Eigen::SparseMatrix<double> tangent_pmb(const PMB& model, const Body<D>& body, c
     std::vector<Eigen::Triplet<double>> trip;
     trip.reserve(bonds.size() * D * D * 2);
     for (std::size_t i = 0; i < n; ++i)
-        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
-            if (bonds.has_damage() && !bonds.intact[k]) continue;
-            const int j = bonds.partner[k];
+        for_intact_bonds(bonds, i, [&](std::int64_t k, int j) {
             Vec<D> Y = y[j] - y[i];
             const double ylen = norm(Y), L = model.length[k];
             const double w = body.volume[i] * model.coef[k];
@@ -212,7 +210,7 @@ Eigen::SparseMatrix<double> tangent_pmb(const PMB& model, const Body<D>& body, c
                     if (const int ci = dofs.index[i * D + d]; ci >= 0) trip.emplace_back(ri, ci, g);
                 }
             }
-        }
+        });
     Eigen::SparseMatrix<double> K(dofs.free, dofs.free);
     K.setFromTriplets(trip.begin(), trip.end());
     return K;
