@@ -20,6 +20,7 @@
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
 #include "pd/damage/precrack.hpp"
+#include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/core/timer.hpp"
 #include "pd/models/correspondence.hpp"
@@ -168,7 +169,7 @@ Line measure(const Scene& s, Make make, int block, int blocks)
 
 }  // namespace
 
-int main(int argc, char** argv)
+int run_bench(int argc, char** argv)
 {
     // 1. Options.
     pd::io::Options opt("damage_cost", "Per-step cost of micropotential over critical stretch (notched plate scene).");
@@ -222,3 +223,5 @@ int main(int argc, char** argv)
     if (!ok) std::fprintf(stderr, "damage_cost: a bond broke or a run went unstable: the comparison is not like for like\n");
     return check && !ok ? 1 : 0;
 }
+
+int main(int argc, char** argv) { return pd::io::guarded_main("damage_cost", [&] { return run_bench(argc, argv); }); }

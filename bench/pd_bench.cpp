@@ -20,6 +20,7 @@
 //   model,nodes,bonds,steps,threads,wall_s,bond_updates_per_s
 #include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
+#include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/core/timer.hpp"
 #include "pd/core/lattice.hpp"
@@ -141,7 +142,7 @@ bool same_bits(const pd::Field<3>& a, const pd::Field<3>& b)
 
 }  // namespace
 
-int main(int argc, char** argv)
+int run_bench(int argc, char** argv)
 {
     // 1. Options.
     pd::io::Options opt("pd_bench", "Bond throughput of the bond loop on an N^3 simple-cubic box.");
@@ -208,3 +209,5 @@ int main(int argc, char** argv)
     }
     return 0;
 }
+
+int main(int argc, char** argv) { return pd::io::guarded_main("pd_bench", [&] { return run_bench(argc, argv); }); }

@@ -144,3 +144,21 @@ TEST(DriverInputs, EveryDriverRejectsUnusableOutAndThreads)
             EXPECT_NE(ss.str().find(name), std::string::npos) << exe << " " << args << ": " << ss.str();
         }
 }
+
+// Extreme but well-formed values (issue 18, findings 1 and 3) end with status 2 and one line, not a
+// signal or an uncaught exception: beyond the options' magnitude range the option is named; an
+// oversized lattice is refused before it is allocated (pd::require_memory names its size).
+TEST(DriverInputs, ExtremeValuesExitTwoWithOneLine)
+{
+    const std::tuple<const char*, const char*, const char*> cases[] = {
+        {"prism_conductivity_3d", "--m 1e308", "--m"},         {"hourglass_modes_3d", "--m 1e308", "--m"},
+        {"correspondence_heat_1d", "--length 1e308", "--length"}, {"numerical_viscosity_3d", "--delta 1e100", "--delta"},
+        {"grid_orientation_2d", "--m-list=1e308", "--m-list"},  {"bar_modes_1d", "--N 2147483647", "cells"},
+    };
+    for (const auto& [exe, args, name] : cases) {
+        const Outcome o = run(exe, std::string("--quick ") + args);
+        EXPECT_EQ(o.status, 2) << exe << " " << args << ": " << o.err;
+        EXPECT_EQ(lines(o.err), 1) << exe << " " << args << ": " << o.err;
+        EXPECT_NE(o.err.find(name), std::string::npos) << exe << " " << args << ": " << o.err;
+    }
+}

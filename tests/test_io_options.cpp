@@ -154,6 +154,9 @@ TEST(IoOptionsDeathTest, InvalidValuesExitTwoNamingTheOption)
     EXPECT_EXIT(run({"--nu", "0.5"}), ExitedWithCode(2), "option --nu must be in \\(-1, 0.5\\), got 0.5");
     EXPECT_EXIT(run({"--m", "0"}), ExitedWithCode(2), "option --m must be >= 1, got 0");
     EXPECT_EXIT(run({"--threads", "-2"}), ExitedWithCode(2), "option --threads must be >= 0");
+    EXPECT_EXIT(run({"--T0", "1e308"}), ExitedWithCode(2), "^prog: error: option --T0 must be 0 or of magnitude 1e-30 to 1e30, got '1e308'");
+    EXPECT_EXIT(run({"--T0", "-1e31"}), ExitedWithCode(2), "option --T0 must be 0 or of magnitude");
+    EXPECT_EXIT(run({"--T0", "1e-31"}), ExitedWithCode(2), "option --T0 must be 0 or of magnitude");
     EXPECT_EXIT(pd::io::fail_input("lib", "bad\nthing"), ExitedWithCode(2), "^lib: error: bad thing\n$");
 }
 

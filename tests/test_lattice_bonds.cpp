@@ -141,6 +141,42 @@ TEST(Lattice, InvalidInputThrows)
     EXPECT_THROW(build_bonds(dup, 1.0), std::invalid_argument);
 }
 
+// Oversized scenes are refused before allocation (pd::require_memory), with a message that says
+// how large they are: a box of 1e18 cells (1 KiB a node: 1e21 bytes), and 1e5 nodes in a row whose
+// horizon holds all of them (1e10 bonds of 64 bytes). No machine has that memory.
+TEST(Lattice, OversizedScenesAreRefusedBeforeAllocation)
+{
+    auto refusal = [](auto&& build) {
+        try {
+            build();
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    const std::string lattice = refusal([] { box<3>({{0, 0, 0}}, {{1, 1, 1}}, 1e-6); });
+    EXPECT_NE(lattice.find("a lattice of 1e+18 cells"), std::string::npos) << lattice;
+    const auto row = box<1>({{0}}, {{1e5}}, 1.0);
+    ASSERT_EQ(row.size(), 100000u);
+    const std::string bonds = refusal([&] { build_bonds(row, 1e6); });
+    EXPECT_NE(bonds.find("delta = 1e+06 m: about 1e+10 bonds"), std::string::npos) << bonds;
+}
+
+// A horizon moment that overflows is an error with the order and delta named, not GSL's abort().
+TEST(Influence, OverflowingHorizonMomentThrows)
+{
+    const Influence one{};
+    EXPECT_THROW(horizon_moment(one, 2, 1e300, 3, 1), std::invalid_argument);
+    std::string what;
+    try {
+        horizon_moment(one, 1, 1e200, 3, 1);
+    } catch (const std::invalid_argument& e) {
+        what = e.what();
+    }
+    EXPECT_NE(what.find("order 1 over delta = 1e+200 m"), std::string::npos) << what;
+    EXPECT_TRUE(std::isfinite(horizon_moment(one, 2, 1e30, 3, 1)));  // the largest delta the options accept
+}
+
 // Regression: with integer m, neighbours at exactly delta sit on cell faces of the search grid;
 // round-off once put some two cells apart and dropped them. Every interior node of a long bar
 // must have the full 122 (hand count, spec/000b V12).

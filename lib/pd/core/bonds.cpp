@@ -1,10 +1,13 @@
 // CSR bond families (bonds.hpp) from the neighbour search of neighbors.hpp.
 #include "pd/core/bonds.hpp"
+#include "pd/core/errors.hpp"
 #include "pd/core/neighbors.hpp"
 #include "pd/core/partial_area.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <limits>
 #include <stdexcept>
 
@@ -34,6 +37,18 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     if (exact && D != 2) throw std::invalid_argument("exact-area partial volumes are for 2D lattices only");
     if (exact && opt.influence.kind != Influence::Kind::one && opt.influence.kind != Influence::Kind::inv_xi)
         throw std::invalid_argument("exact-area partial volumes need an influence function defined beyond delta (one, inv_xi)");
+    // Families that cannot fit are refused before the search: about n x (horizon / mean node volume)
+    // bonds of ~64 bytes each (the bond arrays and a model's per-bond data).
+    double volume = 0;
+    for (double v : body.volume) volume += v;
+    const double ball = D == 3 ? 4 * std::numbers::pi / 3 * delta * delta * delta
+                        : D == 2 ? std::numbers::pi * delta * delta * body.measure : 2 * delta * body.measure;
+    double family = ball / (volume / static_cast<double>(n));
+    if (!(family <= static_cast<double>(n - 1))) family = static_cast<double>(n - 1);  // also NaN (zero volumes)
+    char what[160];
+    std::snprintf(what, sizeof what, "the horizon delta = %g m: about %.3g bonds (%zu nodes, %.3g per family)", delta,
+                  static_cast<double>(n) * family, n, family);
+    require_memory(static_cast<double>(n) * family * 64.0, what);
     // Search reach: delta, or (exact-area) the farthest cell corner the horizon can touch.
     const double reach = (exact ? delta + body.dx * std::sqrt(0.5) : delta) * (1 + horizon_roundoff);
 

@@ -2,7 +2,11 @@
 // them and io/guarded_main.hpp may map them to exit statuses without including an integrator.
 //   Unstable: a run that became unstable (non-finite state, energy blow-up); names the step and
 //   the node (exit status 3). Invalid scenes and inputs throw std::invalid_argument (status 2).
+//   require_memory: a scene too large for this machine is refused before it is allocated (status 2).
 #pragma once
+#include <unistd.h>
+
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -13,5 +17,26 @@ struct Unstable : std::runtime_error {
     int node;   // the node named in the message (0 when the guard is global)
     Unstable(const std::string& what, long step, int node) : std::runtime_error(what), step(step), node(node) {}
 };
+
+// The machine's physical memory [bytes] (0 when unknown).
+inline double physical_memory()
+{
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+}
+
+// Throws std::invalid_argument when an estimated allocation of `bytes` for `what` (e.g. "a lattice
+// of 1e12 cells") exceeds the physical memory: an oversized input then ends with one line and
+// status 2 at once instead of allocating until bad_alloc (or the kernel's out-of-memory killer).
+inline void require_memory(double bytes, const std::string& what)
+{
+    const double have = physical_memory();
+    if (have > 0 && !(bytes <= have)) {
+        char text[96];
+        std::snprintf(text, sizeof text, " needs about %.3g GiB, more than the %.3g GiB of this machine", bytes / 1073741824.0,
+                      have / 1073741824.0);
+        throw std::invalid_argument(what + text);
+    }
+}
 
 }  // namespace pd

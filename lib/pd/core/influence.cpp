@@ -2,11 +2,14 @@
 #include "pd/core/influence.hpp"
 #include "pd/core/bonds.hpp"
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace pd {
 
@@ -49,9 +52,18 @@ double horizon_moment(const Influence& w, int p, double delta, int dim, double m
     gsl_function f{&radial_integrand, &args};
     gsl_integration_workspace* ws = gsl_integration_workspace_alloc(200);
     double result = 0, abserr = 0;
-    gsl_integration_qags(&f, 0.0, delta, 0.0, 1e-12, 200, ws, &result, &abserr);
+    gsl_error_handler_t* handler = gsl_set_error_handler_off();  // a status, not GSL's abort()
+    const int status = gsl_integration_qags(&f, 0.0, delta, 0.0, 1e-12, 200, ws, &result, &abserr);
+    gsl_set_error_handler(handler);
     gsl_integration_workspace_free(ws);
-    return factor * result;
+    const double moment = factor * result;
+    if (status != GSL_SUCCESS || !std::isfinite(moment)) {
+        char what[160];
+        std::snprintf(what, sizeof what, "horizon moment of order %d over delta = %g m failed (GSL: %s)", p, delta,
+                      status != GSL_SUCCESS ? gsl_strerror(status) : "not finite");
+        throw std::invalid_argument(what);
+    }
+    return moment;
 }
 
 double lattice_moment(const Influence& w, int p, double delta, double dx, int dim, double measure)

@@ -1,7 +1,9 @@
 // Lattice generation and node sets (see lattice.hpp).
 #include "pd/core/lattice.hpp"
+#include "pd/core/errors.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace pd {
@@ -12,9 +14,18 @@ Body<D> fill(const Vec<D>& lo, const Vec<D>& hi, double dx, const Region<D>& ins
     if (!(dx > 0)) throw std::invalid_argument("lattice spacing dx must be positive");
     std::array<long, D> n{};
     long total = 1;
+    double cells = 1;  // in floating point: the long product may overflow
+    for (int d = 0; d < D; ++d) {
+        const double nd = std::round((hi[d] - lo[d]) / dx);
+        if (!(nd >= 1)) throw std::invalid_argument("lattice box is thinner than one cell");
+        cells *= nd;
+    }
+    // Per node the body holds D + 1 doubles; the bonds, fields and models built on it take ~1 KiB.
+    char what[64];
+    std::snprintf(what, sizeof what, "a lattice of %.3g cells (box / dx)", cells);
+    require_memory(cells * 1024.0, what);
     for (int d = 0; d < D; ++d) {
         n[d] = std::lround((hi[d] - lo[d]) / dx);
-        if (n[d] < 1) throw std::invalid_argument("lattice box is thinner than one cell");
         total *= n[d];
     }
     Body<D> body;

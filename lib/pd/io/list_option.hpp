@@ -5,7 +5,8 @@
 //     const std::vector<double> sf = pd::io::list_option(opt, "sf", pd::io::ListValues::positive);
 //
 // Items are split at every ',' (no blanks allowed around them: "0.5,0.1"); each must parse as a
-// finite double (pd::io::parse_double) within the requested bound. A malformed or out-of-bound
+// finite double (pd::io::parse_double) within the requested bound and the magnitude range of real
+// options (Options::min_magnitude .. max_magnitude). A malformed or out-of-bound
 // item, or an empty list, ends the program with one line naming the option and status 2
 // (Options::fail, the drivers' input-error contract).
 #pragma once
@@ -35,6 +36,8 @@ inline std::vector<double> list_option(const Options& opt, const std::string& na
         double x = 0;
         const bool ok = parse_double(item, x) && std::isfinite(x) && (positive ? x > 0 : x >= 0);
         if (!ok) opt.fail("option --" + name + ": '" + item + "' is not a " + (positive ? "positive number" : "number >= 0"));
+        if (x != 0 && !(x >= Options::min_magnitude && x <= Options::max_magnitude))
+            opt.fail("option --" + name + ": '" + item + "' must be 0 or of magnitude 1e-30 to 1e30");
         v.push_back(x);
     }
     if (v.empty()) opt.fail("option --" + name + ": empty list");

@@ -15,6 +15,9 @@
 //     opt.save_csv(opt.get_string("out") + "/params.csv");
 //
 // Accepted forms: `--name value`, `--name=value`, `--flag`, `--flag=true|false|1|0`, `--help`.
+// A real value must be finite and 0 or of magnitude min_magnitude to max_magnitude (1e-30 to 1e30):
+// no physical or numerical input of these cases comes near those bounds, and beyond them products
+// the models form (E delta^4, delta^(p + D) in the horizon moments) overflow.
 // `--help` prints the usage to stdout and exits 0. Every input error (unknown option, missing or
 // malformed value, value outside its allowed set or range) prints ONE line
 // `<program>: error: <message naming the option>` to stderr and exits with status 2 (see
@@ -41,6 +44,8 @@ namespace pd::io {
 
 class Options {
 public:
+    static constexpr double min_magnitude = 1e-30, max_magnitude = 1e30;  // of a nonzero real value
+
     Options(std::string program, std::string description);
     Options(const Options&) = delete;
     Options& operator=(const Options&) = delete;
