@@ -55,8 +55,38 @@ TEST(IoCsv, WriterFlushesRowsAndChecksLength)
     const std::string path = temp_path("csv/flush.csv");
     pd::io::CsvWriter csv(path, {"a", "b"});
     csv.row(std::vector<double>{1.5, 2.5});
-    EXPECT_EQ(slurp(path), "a,b\n1.5,2.5\n");  // on disk while the writer is still open
+    EXPECT_EQ(slurp(path + ".part"), "a,b\n1.5,2.5\n");  // on disk while the writer is still open
     EXPECT_THROW(csv.row({1.0}), std::invalid_argument);
+}
+
+// A file takes its name only complete: under name.part while written, renamed at close() or when
+// the writer goes out of scope, also while an exception unwinds (an unstable run keeps its rows);
+// a rerun replaces the old file whole.
+TEST(IoCsv, FileAppearsUnderItsNameOnlyWhenComplete)
+{
+    namespace fs = std::filesystem;
+    const std::string path = temp_path("csv/pending.csv");
+    fs::remove(path);
+    {
+        pd::io::CsvWriter csv(path, {"a"});
+        csv.row({1.0});
+        EXPECT_FALSE(fs::exists(path));
+        EXPECT_TRUE(fs::exists(path + ".part"));
+    }
+    EXPECT_EQ(slurp(path), "a\n1\n");
+    EXPECT_FALSE(fs::exists(path + ".part"));
+    try {
+        pd::io::CsvWriter csv(path, {"a"});
+        csv.row({2.0});
+        EXPECT_EQ(slurp(path), "a\n1\n");  // the previous run's file, whole, until this one is complete
+        throw std::runtime_error("unstable");
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_EQ(slurp(path), "a\n2\n");
+    pd::io::CsvWriter csv(path, {"b"});
+    csv.close();
+    EXPECT_EQ(slurp(path), "b\n");
+    EXPECT_FALSE(fs::exists(path + ".part"));
 }
 
 TEST(IoCsv, ReaderToleratesCrlfBlanksAndComments)

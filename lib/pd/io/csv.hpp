@@ -127,17 +127,50 @@ private:
     std::string text_;
 };
 
+// A file written under a temporary name (`path` + ".part") that takes its own name only when it is
+// complete: at close(), or when the writer is destroyed (also while an exception unwinds, e.g. an
+// unstable run, so the rows written so far are kept). A run that is killed leaves the ".part"
+// file, never a cut file under the final name.
+class PendingFile {
+public:
+    PendingFile() = default;
+    explicit PendingFile(const std::filesystem::path& path) : path_(path), part_(path) { part_ += ".part"; }
+    PendingFile(PendingFile&& o) noexcept : path_(std::move(o.path_)), part_(std::move(o.part_)) { o.part_.clear(); }
+    PendingFile& operator=(PendingFile&& o) noexcept
+    {
+        publish();
+        path_ = std::move(o.path_), part_ = std::move(o.part_);
+        o.part_.clear();
+        return *this;
+    }
+    ~PendingFile() { publish(); }
+    const std::filesystem::path& part() const { return part_; }
+    // Renames the temporary file into place (once); false if that failed.
+    bool publish() noexcept
+    {
+        if (part_.empty()) return true;
+        std::error_code ec;
+        std::filesystem::rename(part_, path_, ec);
+        part_.clear();
+        return !ec;
+    }
+
+private:
+    std::filesystem::path path_, part_;
+};
+
 class CsvWriter {
 public:
-    // Creates parent folders, opens (truncates) `path` and writes the header.
+    // Creates parent folders, opens `path`.part and writes the header; the file takes its name
+    // `path` at close() or destruction (PendingFile).
     // flush_each_row = false buffers rows (faster for very long files); flush() then on demand.
     CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
               bool flush_each_row = true)
-        : path_(path), columns_(std::move(columns)), flush_each_row_(flush_each_row)
+        : path_(path), columns_(std::move(columns)), flush_each_row_(flush_each_row), file_(path)
     {
         if (columns_.empty()) throw std::invalid_argument("CsvWriter: no columns for " + path_.string());
         ensure_parent_dir(path_);
-        out_.open(path_, std::ios::out | std::ios::trunc);
+        out_.open(file_.part(), std::ios::out | std::ios::trunc);
         if (!out_) throw std::runtime_error("cannot open " + path_.string() + " for writing");
         std::vector<CsvCell> head(columns_.begin(), columns_.end());
         write_line(head.data(), head.size());
@@ -161,6 +194,13 @@ public:
     {
         out_.flush();
         if (!out_) throw std::runtime_error("write error on " + path_.string());
+    }
+    // Flushes, closes and renames the file into place; the writer takes no rows after it.
+    void close()
+    {
+        flush();
+        out_.close();
+        if (!file_.publish()) throw std::runtime_error("cannot rename " + file_.part().string() + " to " + path_.string());
     }
 
     const std::filesystem::path& path() const { return path_; }
@@ -191,6 +231,7 @@ private:
     bool flush_each_row_;
     bool has_header_ = false;
     std::size_t rows_ = 0;
+    PendingFile file_;    // declared before out_: the stream is closed before the rename
     std::ofstream out_;
 };
 
@@ -217,6 +258,7 @@ inline void write_summary(const std::filesystem::path& path, const std::vector<S
 {
     CsvWriter csv(path, {"quantity", "value", "reference", "rel_error", "unit"});
     for (const auto& r : rows) csv.row({r.quantity, r.value, r.reference, r.rel_error, r.unit});
+    csv.close();
 }
 
 // Prints the summary rows as the drivers' table on stdout: quantity column name_width wide,

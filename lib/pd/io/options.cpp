@@ -297,7 +297,7 @@ void Options::save_csv(const std::filesystem::path& path) const
 {
     CsvWriter csv(path, {"option", "value", "unit"}, false);
     for (const auto& e : entries_) csv.row_strings({e->name, e->value_text(), e->unit});
-    csv.flush();
+    csv.close();
 }
 
 void Options::print_usage(std::ostream& os) const

@@ -71,11 +71,14 @@ std::vector<double> pad3(const std::string& what, std::span<const double> v, int
 void write_file(const std::filesystem::path& path, const std::string& text)
 {
     ensure_parent_dir(path);
-    std::ofstream out(path, std::ios::out | std::ios::trunc | std::ios::binary);
+    PendingFile file(path);  // csv.hpp: under path.part until complete
+    std::ofstream out(file.part(), std::ios::out | std::ios::trunc | std::ios::binary);
     if (!out) throw std::runtime_error("cannot open " + path.string() + " for writing");
     out << text;
     out.flush();
     if (!out) throw std::runtime_error("write error on " + path.string());
+    out.close();
+    if (!file.publish()) throw std::runtime_error("cannot rename " + file.part().string() + " to " + path.string());
 }
 
 }  // namespace
