@@ -190,6 +190,8 @@ int main(int argc, char** argv)
     std::cout << program << ": options\n";
     opt.echo(std::cout);
     try {
+        std::filesystem::create_directories(cfg.out);
+        pd::io::OutputManifest::begin(cfg.out);  // the previous run's files in --out go first (csv.hpp)
         opt.save_csv(cfg.out / "params.csv");
     } catch (const std::exception& e) {
         fail("option --out: " + std::string(e.what()));

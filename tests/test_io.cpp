@@ -89,6 +89,32 @@ TEST(IoCsv, FileAppearsUnderItsNameOnlyWhenComplete)
     EXPECT_FALSE(fs::exists(path + ".part"));
 }
 
+// A run into a folder first removes the files the previous run wrote there (its manifest), and only
+// those: a file of the user's and names outside the folder stay.
+TEST(IoCsv, OutputManifestRemovesThePreviousRunsFilesOnly)
+{
+    namespace fs = std::filesystem;
+    const fs::path dir = temp_path("manifest");
+    fs::remove_all(dir);
+    fs::create_directories(dir / "sub");
+    for (const char* f : {"old.csv", "old.csv.part", "sub/x.csv", "keep.txt"}) std::ofstream(dir / f) << "x\n";
+    std::ofstream(temp_path("outside.csv")) << "x\n";
+    std::ofstream(dir / pd::io::OutputManifest::name) << "old.csv\nsub/x.csv\n../outside.csv\n/etc/hostname\n";
+    pd::io::OutputManifest::begin(dir);
+    EXPECT_FALSE(fs::exists(dir / "old.csv"));
+    EXPECT_FALSE(fs::exists(dir / "old.csv.part"));
+    EXPECT_FALSE(fs::exists(dir / "sub/x.csv"));
+    EXPECT_TRUE(fs::exists(dir / "keep.txt"));
+    EXPECT_TRUE(fs::exists(temp_path("outside.csv")));
+    EXPECT_EQ(slurp((dir / pd::io::OutputManifest::name).string()), "");
+    { pd::io::CsvWriter csv(dir / "sub" / "new.csv", {"a"}); }
+    { pd::io::CsvWriter csv(temp_path("elsewhere.csv"), {"a"}); }
+    EXPECT_EQ(slurp((dir / pd::io::OutputManifest::name).string()), "sub/new.csv\n");
+    pd::io::OutputManifest::begin(dir);  // the next run
+    EXPECT_FALSE(fs::exists(dir / "sub" / "new.csv"));
+    EXPECT_TRUE(fs::exists(dir / "keep.txt"));
+}
+
 TEST(IoCsv, ReaderToleratesCrlfBlanksAndComments)
 {
     const std::string path = temp_path("csv/tolerant.csv");

@@ -14,7 +14,8 @@
 //
 // Exit status (with guarded_main): 0 done, 1 a --check failed, 2 invalid input, 3 unstable run.
 // --out must name a folder that can be created (not empty, not an existing file): otherwise the
-// one-line message and status 2, before any computation. --threads is at most 4x the processors.
+// one-line message and status 2, before any computation. The files a previous run wrote there
+// (its OutputManifest, csv.hpp) are removed first, so that the folder holds one run's files. --threads is at most 4x the processors.
 #pragma once
 #include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
@@ -80,6 +81,7 @@ public:
         if (ec || !std::filesystem::is_directory(out_)) opt.fail("option --out: cannot create the folder '" + out_.string() + "'");
         opt.echo(std::cout);
         try {
+            OutputManifest::begin(out_);  // removes the files of the previous run into out_ (csv.hpp)
             opt.save_csv(out_ / "params.csv");
         } catch (const std::exception& e) {
             opt.fail("option --out: " + std::string(e.what()));

@@ -28,6 +28,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <initializer_list>
 #include <limits>
 #include <stdexcept>
@@ -127,6 +128,54 @@ private:
     std::string text_;
 };
 
+// The output manifest: the names of the files a run writes into its output folder, one per line in
+// <out>/.pd_files (recorded when a PendingFile opens, so a killed run's ".part" files are listed too).
+// begin(out) first removes what the previous run's manifest lists (each file and its ".part"), so
+// that a folder never mixes two runs, and nothing else: files the suite did not write stay.
+class OutputManifest {
+public:
+    static constexpr const char* name = ".pd_files";
+    static void begin(const std::filesystem::path& out)
+    {
+        namespace fs = std::filesystem;
+        const std::lock_guard<std::mutex> lock(mutex());
+        const fs::path list = out / name;
+        std::ifstream in(list);
+        for (std::string line; std::getline(in, line);) {
+            const fs::path rel(line);
+            if (line.empty() || rel.is_absolute() || line.find("..") != std::string::npos) continue;  // only names below out
+            std::error_code ec;
+            fs::remove(out / rel, ec);
+            fs::remove(out / (line + ".part"), ec);
+        }
+        in.close();
+        std::ofstream(list, std::ios::trunc);
+        if (!std::ofstream(list, std::ios::app)) throw std::runtime_error("cannot write " + list.string());
+        dir() = out;
+    }
+    // Lists `file` when it lies below the folder of begin() (no-op before begin, or for files elsewhere).
+    static void record(const std::filesystem::path& file) noexcept
+    {
+        const std::lock_guard<std::mutex> lock(mutex());
+        if (dir().empty()) return;
+        const std::filesystem::path rel = file.lexically_normal().lexically_relative(dir().lexically_normal());
+        if (rel.empty() || *rel.begin() == "..") return;
+        std::ofstream(dir() / name, std::ios::app) << rel.generic_string() << '\n';
+    }
+
+private:
+    static std::mutex& mutex()
+    {
+        static std::mutex m;
+        return m;
+    }
+    static std::filesystem::path& dir()
+    {
+        static std::filesystem::path d;
+        return d;
+    }
+};
+
 // A file written under a temporary name (`path` + ".part") that takes its own name only when it is
 // complete: at close(), or when the writer is destroyed (also while an exception unwinds, e.g. an
 // unstable run, so the rows written so far are kept). A run that is killed leaves the ".part"
@@ -134,7 +183,11 @@ private:
 class PendingFile {
 public:
     PendingFile() = default;
-    explicit PendingFile(const std::filesystem::path& path) : path_(path), part_(path) { part_ += ".part"; }
+    explicit PendingFile(const std::filesystem::path& path) : path_(path), part_(path)
+    {
+        part_ += ".part";
+        OutputManifest::record(path_);
+    }
     PendingFile(PendingFile&& o) noexcept : path_(std::move(o.path_)), part_(std::move(o.part_)) { o.part_.clear(); }
     PendingFile& operator=(PendingFile&& o) noexcept
     {

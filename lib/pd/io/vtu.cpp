@@ -203,13 +203,7 @@ void PvdWriter::rewrite() const
              xml_escape(e.file) + "\"/>\n";
     s += "  </Collection>\n";
     s += "</VTKFile>\n";
-    // Write beside the target, then rename: readers never see a half-written collection.
-    std::filesystem::path tmp = path_;
-    tmp += ".tmp";
-    write_file(tmp, s);
-    std::error_code ec;
-    std::filesystem::rename(tmp, path_, ec);
-    if (ec) throw std::runtime_error("cannot rename " + tmp.string() + " to " + path_.string() + ": " + ec.message());
+    write_file(path_, s);  // under state.pvd.part, then renamed: readers never see a half-written collection
 }
 
 }  // namespace pd::io
