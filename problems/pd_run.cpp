@@ -54,6 +54,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     std::printf("points %zu, bonds %zu (ordered pairs), blocks %ld, fixed %ld, isolated %ld\n", body.size(),
                 bonds.size(), pc.blocks(), pc.fixed_count(), isolated);
     if (pc.blocks() > 1) std::printf("note: %ld blocks share one material (per-block materials come later)\n", pc.blocks());
+    warn_empty_scene(body, bonds, isolated);
     std::unique_ptr<HeatRun> heat;
     if (cfg.heat.model != "none") heat = make_heat<D>(cfg.heat, pc, body, bonds, cfg.out, fail);
     if (!cfg.mechanics) {
@@ -81,6 +82,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
                                  .C_hg = cfg.hourglass};
     return pd::with_model(choice, body, bonds, [&](auto& model) {
         using Model = std::decay_t<decltype(model)>;
+        if constexpr (std::is_same_v<Model, pd::Correspondence<D>>) warn_singular_shape_tensors(model, D);
         if constexpr (std::is_same_v<Model, pd::PMB>) pd::apply_surface_correction(model, body, bonds, cfg.surface);
         if constexpr (std::is_same_v<Model, pd::LPS>)
             if (cfg.model == "lps")

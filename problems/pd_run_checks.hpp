@@ -4,11 +4,21 @@
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
 #include "pd/core/material.hpp"
-#include "pd_run_integrate.hpp"  // pd_run::fail
+#include "pd/core/bonds.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/io/csv.hpp"
+#include "pd_run_integrate.hpp"  // pd_run::fail, program
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace pd_run {
+
+inline constexpr double near_duplicate = 1e-3;  // closest pair / median nearest spacing below which pd_run warns
 
 // The elastic constants: exactly one of the pairs --K --G and --E --nu (1D: --E alone).
 inline pd::Elastic elastic_constants(const pd::io::Options& opt, int dim, pd::Plane plane)
@@ -41,5 +51,54 @@ inline void check_cloud(const pd::io::PointCloud& pc, const pd::io::Options& opt
     if (heat && pc.has_column("T0") && opt.given("T0")) fail("option --T0 is ambiguous: " + file + " has a T0 column");
 }
 
+// Physically empty scenes (after the bonds): every point isolated is an error naming --delta; some
+// isolated points, and points much nearer than the cloud's typical spacing (they set the automatic
+// step: the stiffness of a bond grows as 1/|xi|), are a one-line warning each on stderr.
+template <int D>
+void warn_empty_scene(const pd::Body<D>& body, const pd::Bonds& bonds, long isolated)
+{
+    const std::size_t n = body.size();
+    if (isolated == static_cast<long>(n))
+        fail("option --delta: no point has a bond within delta = " + pd::io::format_shortest(bonds.delta) +
+             " m (every point is isolated; --delta must exceed the spacing of the cloud)");
+    if (isolated > 0)
+        std::fprintf(stderr, "%s: warning: %ld of %zu points have no bond within --delta (they move freely)\n", program, isolated, n);
+    // Nearest partner per point; the closest pair against the median nearest spacing.
+    std::vector<double> nearest;
+    double closest = std::numeric_limits<double>::infinity();
+    std::size_t ci = 0;
+    int cj = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double r = std::numeric_limits<double>::infinity();
+        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k)
+            if (bonds.length[k] < r) {
+                r = bonds.length[k];
+                if (r < closest) closest = r, ci = i, cj = bonds.partner[k];
+            }
+        if (std::isfinite(r)) nearest.push_back(r);
+    }
+    if (nearest.empty()) return;
+    std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+    const double median = nearest[nearest.size() / 2];
+    if (closest < near_duplicate * median)
+        std::fprintf(stderr, "%s: warning: points %zu and %d are %.3g m apart, %.2g of the median nearest spacing %.3g m: "
+                     "near-duplicates shrink the automatic step in proportion\n", program, ci, cj, closest, closest / median, median);
+}
+
+// Correspondence: points whose shape tensor is singular (fewer than D independent bonds) carry no
+// stress force; all of them is an error (a flat cloud run with a larger --dim), some a warning.
+template <class Model>
+void warn_singular_shape_tensors(const Model& model, int dim)
+{
+    long singular = 0;
+    for (const auto& K_inv : model.Kinv) singular += K_inv.isZero(0);
+    const long n = static_cast<long>(model.Kinv.size());
+    if (n > 0 && singular == n)
+        fail("option --model correspondence: every shape tensor is singular (fewer than " + std::to_string(dim) +
+             " independent bonds per point; is the cloud flat for --dim " + std::to_string(dim) + "?)");
+    if (singular > 0)
+        std::fprintf(stderr, "%s: warning: %ld of %ld points have a singular shape tensor (no correspondence stress force)\n", program,
+                     singular, n);
+}
 
 }  // namespace pd_run

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 #include <sys/wait.h>
@@ -161,4 +162,14 @@ TEST(DriverInputs, ExtremeValuesExitTwoWithOneLine)
         EXPECT_EQ(lines(o.err), 1) << exe << " " << args << ": " << o.err;
         EXPECT_NE(o.err.find(name), std::string::npos) << exe << " " << args << ": " << o.err;
     }
+}
+
+// More threads than processors run, with one warning line (oversubscription only slows a run).
+TEST(DriverInputs, ThreadsAboveTheProcessorsWarn)
+{
+    const unsigned procs = std::thread::hardware_concurrency();
+    if (procs == 0) GTEST_SKIP() << "processor count unknown";
+    const Outcome o = run("sls_frequency_1d", "--quick --threads " + std::to_string(procs + 1));
+    EXPECT_EQ(o.status, 0) << o.err;
+    EXPECT_NE(o.err.find("warning: --threads " + std::to_string(procs + 1) + " is more than the"), std::string::npos) << o.err;
 }

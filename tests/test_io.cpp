@@ -115,6 +115,24 @@ TEST(IoCsv, OutputManifestRemovesThePreviousRunsFilesOnly)
     EXPECT_TRUE(fs::exists(dir / "keep.txt"));
 }
 
+TEST(IoCsv, ReaderToleratesByteOrderMarkAndCrLineEnds)
+{
+    const std::string path = temp_path("csv/bom_cr.csv");
+    std::ofstream(path) << "\xEF\xBB\xBFx,y\r1,2\r\r3,4\r";
+    const auto t = pd::io::read_csv(path);
+    EXPECT_EQ(t.header, (std::vector<std::string>{"x", "y"}));
+    ASSERT_EQ(t.rows.size(), 2u);
+    EXPECT_EQ(t.rows[1].line, 4);
+    EXPECT_EQ(t.rows[1].fields, (std::vector<std::string>{"3", "4"}));
+    std::ofstream(path) << "x,y\n1,2,\n";
+    try {
+        pd::io::read_csv(path);
+        ADD_FAILURE() << "a row with a trailing comma was read";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("bom_cr.csv:2: expected 2 fields, found 3 (a trailing comma?)"), std::string::npos) << e.what();
+    }
+}
+
 TEST(IoCsv, ReaderToleratesCrlfBlanksAndComments)
 {
     const std::string path = temp_path("csv/tolerant.csv");

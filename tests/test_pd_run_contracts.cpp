@@ -55,6 +55,11 @@ TEST(PdRun, BadInputsExitTwoWithOneLine)
     const std::string txt_file = write_file("txt_run.csv", "x,y,z,volume\n0,zero,0,1e-9\n").string();
     const std::string z_file = write_file("z_run.csv", "x,y,z,volume\n0,0,0,1e-9\n1e-3,0,1,1e-9\n").string();
     const std::string empty_file = write_file("empty_run.csv", "").string();
+    const std::string comma_file = write_file("comma_run.csv", "x,y,z,volume,\n0,0,0,1e-9,\n").string();
+    std::string flat = "x,y,z,volume\n";
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) flat += std::to_string(i * 1e-3) + "," + std::to_string(j * 1e-3) + ",0,1e-9\n";
+    const std::string flat_file = write_file("flat_run.csv", flat).string();
     struct Case { std::string args, expect; };
     const std::vector<Case> cases = {
         {in + " --E -1 --nu 0.25 --rho 7800", "--E"},
@@ -86,6 +91,9 @@ TEST(PdRun, BadInputsExitTwoWithOneLine)
         {"--input " + empty_file + " --delta 2e-3" + steel, "empty_run.csv: empty file"},
         {"--input " + (base() / "nowhere.csv").string() + " --delta 2e-3" + steel, "nowhere.csv: no such file"},
         {"--input " + base().string() + " --delta 2e-3" + steel, "not a regular file"},
+        {"--input " + comma_file + " --delta 2e-3" + steel, "comma_run.csv:1: empty column name in the header (a trailing comma?)"},
+        {"--input " + good + steel + " --delta 5e-4 --dt 1e-9", "--delta: no point has a bond within delta = 5e-04 m"},
+        {"--input " + flat_file + steel + " --delta 1.5e-3 --model correspondence", "every shape tensor is singular"},
     };
     for (std::size_t k = 0; k < cases.size(); ++k) {
         const Result r = pd_run("bad" + std::to_string(k), cases[k].args);
@@ -93,4 +101,22 @@ TEST(PdRun, BadInputsExitTwoWithOneLine)
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         EXPECT_NE(r.err.find(cases[k].expect), std::string::npos) << cases[k].args << "\n" << r.err;
     }
+}
+
+// What spreadsheets write is read: a UTF-8 byte-order mark and CR-only line ends. Scenes that are
+// partly empty run, with one warning line each: a point without bonds, a near-duplicate pair.
+TEST(PdRun, BomCrLineEndsAndPartlyEmptyScenes)
+{
+    const std::string bom = write_file("bom_run.csv", "\xEF\xBB\xBFx,y,z,volume\r0,0,0,1e-9\r1e-3,0,0,1e-9\r").string();
+    const Result r = pd_run("bom", "--input " + bom + steel + " --delta 2e-3 --steps 2");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("points 2, bonds 2"), std::string::npos) << r.out;
+    const std::string lone = write_file("lone_run.csv", "x,y,z,volume\n0,0,0,1e-9\n1e-3,0,0,1e-9\n1e-2,0,0,1e-9\n").string();
+    const Result l = pd_run("lone", "--input " + lone + steel + " --delta 2e-3 --steps 2");
+    EXPECT_EQ(l.status, 0) << l.err;
+    EXPECT_NE(l.err.find("warning: 1 of 3 points have no bond within --delta"), std::string::npos) << l.err;
+    const std::string near = write_file("near_run.csv", "x,y,z,volume\n0,0,0,1e-9\n1e-3,0,0,1e-9\n2e-3,0,0,1e-9\n2.000001e-3,0,0,1e-9\n").string();
+    const Result d = pd_run("near", "--input " + near + steel + " --delta 1.5e-3 --steps 2");
+    EXPECT_EQ(d.status, 0) << d.err;
+    EXPECT_NE(d.err.find("warning: points 2 and 3 are 1e-09 m apart"), std::string::npos) << d.err;
 }

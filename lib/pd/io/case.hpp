@@ -15,7 +15,7 @@
 // Exit status (with guarded_main): 0 done, 1 a --check failed, 2 invalid input, 3 unstable run.
 // --out must name a folder that can be created (not empty, not an existing file): otherwise the
 // one-line message and status 2, before any computation. The files a previous run wrote there
-// (its OutputManifest, csv.hpp) are removed first, so that the folder holds one run's files. --threads is at most 4x the processors.
+// (its OutputManifest, csv.hpp) are removed first, so that the folder holds one run's files. --threads is at most 4x the processors (above the processors: a warning).
 #pragma once
 #include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
@@ -86,7 +86,11 @@ public:
         } catch (const std::exception& e) {
             opt.fail("option --out: " + std::string(e.what()));
         }
-        set_threads(quick_ && quick_threads > 0 && !opt.given("threads") ? quick_threads : opt.get_int("threads"));
+        const int threads = opt.get_int("threads");
+        if (const unsigned procs = std::thread::hardware_concurrency(); procs > 0 && threads > static_cast<int>(procs))
+            std::fprintf(stderr, "%s: warning: --threads %d is more than the %u processors (oversubscription slows the run)\n",
+                         opt.program().c_str(), threads, procs);
+        set_threads(quick_ && quick_threads > 0 && !opt.given("threads") ? quick_threads : threads);
     }
 
     bool quick() const { return quick_; }

@@ -14,7 +14,8 @@
 // unit`, one row per headline result; an absent reference or error is written `nan`.
 //
 // Reader: read_csv returns the header and the rows as text with their line numbers (1-based), for
-// point clouds and tables. It tolerates CRLF line ends and blanks around fields, skips blank lines
+// point clouds and tables. It tolerates a UTF-8 byte-order mark, CRLF and CR line ends and blanks
+// around fields, skips blank lines
 // and lines starting with '#', understands quoted fields (on one line), and rejects rows whose
 // field count differs from the header's. Errors throw std::runtime_error("<path>:<line>: ...").
 #pragma once
@@ -30,8 +31,10 @@
 #include <fstream>
 #include <mutex>
 #include <initializer_list>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -424,8 +427,13 @@ inline bool split_csv_line(std::string_view line, std::vector<std::string>& fiel
 // Reads a CSV file (see the file header for what is tolerated). Throws std::runtime_error.
 inline CsvTable read_csv(const std::filesystem::path& path)
 {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error("cannot open " + path.string() + " for reading");
+    std::ifstream file(path, std::ios::binary);
+    if (!file) throw std::runtime_error("cannot open " + path.string() + " for reading");
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);  // the UTF-8 byte-order mark of spreadsheet "CSV UTF-8"
+    for (std::size_t i = 0; i < text.size(); ++i)                // CR-only line ends (classic Mac) become LF
+        if (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n')) text[i] = '\n';
+    std::istringstream in(text);
     CsvTable t;
     t.path = path;
     std::string line;
@@ -445,8 +453,9 @@ inline CsvTable read_csv(const std::filesystem::path& path)
             continue;
         }
         if (fields.size() != t.header.size())
-            throw std::runtime_error(where + "expected " + std::to_string(t.header.size()) +
-                                     " fields, found " + std::to_string(fields.size()));
+            throw std::runtime_error(where + "expected " + std::to_string(t.header.size()) + " fields, found " +
+                                     std::to_string(fields.size()) +
+                                     (fields.size() == t.header.size() + 1 && detail::trim(fields.back()).empty() ? " (a trailing comma?)" : ""));
         t.rows.push_back({number, fields});
     }
     if (!have_header) throw std::runtime_error(path.string() + ": no header line");

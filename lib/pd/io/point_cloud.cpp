@@ -62,6 +62,7 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
     pc.columns = t.header;
     for (std::size_t c = 0; c < t.header.size(); ++c) {
         const std::string& name = t.header[c];
+        if (name.empty()) fail_at(path, t.header_line, "", "empty column name in the header (a trailing comma?)");
         if (std::find(allowed_columns.begin(), allowed_columns.end(), name) == allowed_columns.end())
             fail_at(path, t.header_line, name, "unknown column (allowed: x,y,z,volume,block,vx,vy,vz,ux,uy,uz,fixed,no_fail,T0,T_fixed)");
         if (std::find(t.header.begin(), t.header.begin() + c, name) != t.header.begin() + c)
