@@ -70,11 +70,12 @@ void warn_empty_scene(const pd::Body<D>& body, const pd::Bonds& bonds, long isol
     int cj = 0;
     for (std::size_t i = 0; i < n; ++i) {
         double r = std::numeric_limits<double>::infinity();
-        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k)
+        pd::for_intact_bonds(bonds, i, [&](std::int64_t k, int j) {
             if (bonds.length[k] < r) {
                 r = bonds.length[k];
-                if (r < closest) closest = r, ci = i, cj = bonds.partner[k];
+                if (r < closest) closest = r, ci = i, cj = j;
             }
+        });
         if (std::isfinite(r)) nearest.push_back(r);
     }
     if (nearest.empty()) return;

@@ -27,9 +27,10 @@
 // without that array (if constexpr).
 // Summation order, fixed so that it depends neither on the threads nor on the vectoriser: bond
 // begin(i) + l + 8 m of node i goes to partial sum l (l < lanes = 8), and the 8 partial sums are
-// added pairwise at the end (lane_sums, the per-node traversal under every per-node pass). The 8-bond inner loop has a fixed trip count, so GCC turns it into
-// SIMD code (y_j gathered, vsqrtpd, vdivpd) -- provided sqrt need not set errno, i.e. the build
-// uses -fno-math-errno; otherwise the loop stays scalar, with 8 independent partial sums.
+// added pairwise at the end (lane_sums, the per-node traversal under every per-node pass). The
+// 8-bond inner loop has a fixed trip count, so GCC turns it into SIMD code (y_j gathered, vsqrtpd,
+// vdivpd) -- provided sqrt need not set errno, i.e. the build uses -fno-math-errno; otherwise the
+// loop stays scalar, with 8 independent partial sums.
 #pragma once
 #include "pd/core/bonds.hpp"
 #include "pd/core/field.hpp"

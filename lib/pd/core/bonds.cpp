@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <limits>
 #include <stdexcept>
 
@@ -41,9 +40,8 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     // bonds of ~64 bytes each (the bond arrays and a model's per-bond data).
     double volume = 0;
     for (double v : body.volume) volume += v;
-    const double ball = D == 3 ? 4 * std::numbers::pi / 3 * delta * delta * delta
-                        : D == 2 ? std::numbers::pi * delta * delta * body.measure : 2 * delta * body.measure;
-    double family = ball / (volume / static_cast<double>(n));
+    const double horizon = horizon_moment(Influence{}, 0, delta, D, body.measure);  // its volume [m^3]
+    double family = horizon / (volume / static_cast<double>(n));
     if (!(family <= static_cast<double>(n - 1))) family = static_cast<double>(n - 1);  // also NaN (zero volumes)
     char what[160];
     std::snprintf(what, sizeof what, "the horizon delta = %g m: about %.3g bonds (%zu nodes, %.3g per family)", delta,

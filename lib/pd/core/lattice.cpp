@@ -14,18 +14,19 @@ Body<D> fill(const Vec<D>& lo, const Vec<D>& hi, double dx, const Region<D>& ins
     if (!(dx > 0)) throw std::invalid_argument("lattice spacing dx must be positive");
     std::array<long, D> n{};
     long total = 1;
+    std::array<double, D> nd{};
     double cells = 1;  // in floating point: the long product may overflow
     for (int d = 0; d < D; ++d) {
-        const double nd = std::round((hi[d] - lo[d]) / dx);
-        if (!(nd >= 1)) throw std::invalid_argument("lattice box is thinner than one cell");
-        cells *= nd;
+        nd[d] = std::round((hi[d] - lo[d]) / dx);
+        if (!(nd[d] >= 1)) throw std::invalid_argument("lattice box is thinner than one cell");
+        cells *= nd[d];
     }
     // Per node the body holds D + 1 doubles; the bonds, fields and models built on it take ~1 KiB.
     char what[64];
     std::snprintf(what, sizeof what, "a lattice of %.3g cells (box / dx)", cells);
     require_memory(cells * 1024.0, what);
     for (int d = 0; d < D; ++d) {
-        n[d] = std::lround((hi[d] - lo[d]) / dx);
+        n[d] = static_cast<long>(nd[d]);
         total *= n[d];
     }
     Body<D> body;

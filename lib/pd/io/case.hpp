@@ -15,13 +15,15 @@
 // Exit status (with guarded_main): 0 done, 1 a --check failed, 2 invalid input, 3 unstable run.
 // --out must name a folder that can be created (not empty, not an existing file): otherwise the
 // one-line message and status 2, before any computation. The files a previous run wrote there
-// (its OutputManifest, csv.hpp) are removed first, so that the folder holds one run's files. --threads is at most 4x the processors (above the processors: a warning).
+// (its OutputManifest, csv.hpp) are removed first, so that the folder holds one run's files.
+// --threads is at most 4x the processors (above the processors: a warning).
 #pragma once
 #include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
 #include "pd/core/parallel.hpp"
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
@@ -35,11 +37,8 @@ namespace pd::io {
 
 // The largest --threads accepted: oversubscription beyond 4 threads per processor only slows a run
 // down (and thousands of threads exhaust the system's thread limit).
-inline int max_threads()
-{
-    const unsigned procs = std::thread::hardware_concurrency();
-    return 4 * static_cast<int>(procs > 0 ? procs : 1);
-}
+inline int processors() { return static_cast<int>(std::thread::hardware_concurrency()); }  // 0 when unknown
+inline int max_threads() { return 4 * std::max(processors(), 1); }
 
 class Case {
 public:
@@ -87,9 +86,9 @@ public:
             opt.fail("option --out: " + std::string(e.what()));
         }
         const int threads = opt.get_int("threads");
-        if (const unsigned procs = std::thread::hardware_concurrency(); procs > 0 && threads > static_cast<int>(procs))
-            std::fprintf(stderr, "%s: warning: --threads %d is more than the %u processors (oversubscription slows the run)\n",
-                         opt.program().c_str(), threads, procs);
+        if (processors() > 0 && threads > processors())
+            std::fprintf(stderr, "%s: warning: --threads %d is more than the %d processors (oversubscription slows the run)\n",
+                         opt.program().c_str(), threads, processors());
         set_threads(quick_ && quick_threads > 0 && !opt.given("threads") ? quick_threads : threads);
     }
 

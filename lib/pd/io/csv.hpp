@@ -152,8 +152,7 @@ public:
             fs::remove(out / (line + ".part"), ec);
         }
         in.close();
-        std::ofstream(list, std::ios::trunc);
-        if (!std::ofstream(list, std::ios::app)) throw std::runtime_error("cannot write " + list.string());
+        if (!std::ofstream(list, std::ios::trunc)) throw std::runtime_error("cannot write " + list.string());
         dir() = out;
     }
     // Lists `file` when it lies below the folder of begin() (no-op before begin, or for files elsewhere).

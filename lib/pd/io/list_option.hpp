@@ -36,8 +36,7 @@ inline std::vector<double> list_option(const Options& opt, const std::string& na
         double x = 0;
         const bool ok = parse_double(item, x) && std::isfinite(x) && (positive ? x > 0 : x >= 0);
         if (!ok) opt.fail("option --" + name + ": '" + item + "' is not a " + (positive ? "positive number" : "number >= 0"));
-        if (x != 0 && !(x >= Options::min_magnitude && x <= Options::max_magnitude))
-            opt.fail("option --" + name + ": '" + item + "' must be 0 or of magnitude 1e-30 to 1e30");
+        if (const std::string bad = Options::magnitude_error(x); !bad.empty()) opt.fail("option --" + name + ": '" + item + "' " + bad);
         v.push_back(x);
     }
     if (v.empty()) opt.fail("option --" + name + ": empty list");

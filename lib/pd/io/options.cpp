@@ -152,8 +152,7 @@ void Options::set_value(Entry& e, const std::string& text)
         double v = 0.0;
         if (!parse_double(text, v)) fail(opt + " expects a number, got '" + text + "'");
         if (!std::isfinite(v)) fail(opt + " expects a finite number, got '" + text + "'");
-        if (v != 0 && !(std::abs(v) >= min_magnitude && std::abs(v) <= max_magnitude))
-            fail(opt + " must be 0 or of magnitude 1e-30 to 1e30, got '" + text + "'");
+        if (const std::string bad = magnitude_error(v); !bad.empty()) fail(opt + " " + bad + ", got '" + text + "'");
         e.real = v;
         break;
     }

@@ -29,6 +29,7 @@
 // reason.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
@@ -45,6 +46,11 @@ namespace pd::io {
 class Options {
 public:
     static constexpr double min_magnitude = 1e-30, max_magnitude = 1e30;  // of a nonzero real value
+    // Empty when v is 0 or within the magnitude range, else what is wrong (for the message).
+    static std::string magnitude_error(double v)
+    {
+        return v == 0 || (std::abs(v) >= min_magnitude && std::abs(v) <= max_magnitude) ? "" : "must be 0 or of magnitude 1e-30 to 1e30";
+    }
 
     Options(std::string program, std::string description);
     Options(const Options&) = delete;
