@@ -173,3 +173,30 @@ TEST(DriverInputs, ThreadsAboveTheProcessorsWarn)
     EXPECT_EQ(o.status, 0) << o.err;
     EXPECT_NE(o.err.find("warning: --threads " + std::to_string(procs + 1) + " is more than the"), std::string::npos) << o.err;
 }
+
+// --quick chooses the coarse case but never overrides a size the user gave (issue 18, finding 6):
+// sls_frequency_1d's frequency grid is 17 points under --quick, --points 5 gives 5, and params.csv
+// records the value that ran in both cases.
+TEST(DriverInputs, QuickKeepsTheSizesTheUserGave)
+{
+    const std::string dir = pd_test::scratch_dir().string();
+    auto count_rows = [](const std::string& path) {
+        std::ifstream in(path);
+        int n = -1;  // the header
+        for (std::string line; std::getline(in, line);) n += !line.empty();
+        return n;
+    };
+    auto param = [](const std::string& path, const std::string& name) {
+        std::ifstream in(path);
+        for (std::string line; std::getline(in, line);)
+            if (line.rfind(name + ",", 0) == 0) return line.substr(name.size() + 1, line.find(',', name.size() + 1) - name.size() - 1);
+        return std::string("(missing)");
+    };
+    for (const auto& [args, points] : {std::pair{"", 17}, std::pair{"--points 5", 5}}) {
+        const std::string out = dir + "/quick_sizes";
+        const std::string cmd = std::string(PD_BIN_DIR) + "/sls_frequency_1d --quick " + args + " --out " + out + " > /dev/null 2>&1";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+        EXPECT_EQ(count_rows(out + "/frequency.csv"), points) << args;
+        EXPECT_EQ(param(out + "/params.csv", "points"), std::to_string(points)) << args;
+    }
+}

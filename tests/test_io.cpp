@@ -1,6 +1,7 @@
 // tests/test_io.cpp -- pd::io: CSV writer/reader round trip, summary.csv and convergence.csv
 // headers, observed convergence rate, VTU/PVD files, timer and progress display (options and their
 // exit-2 contract: test_io_options.cpp).
+#include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
@@ -175,6 +176,31 @@ TEST(IoCsv, SummaryHeaderAndAbsentReference)
     ASSERT_EQ(t.rows.size(), 2u);
     EXPECT_EQ(t.number(0, 3), 0.5 / 1000.0);
     EXPECT_EQ(t.rows[1].fields, (std::vector<std::string>{"energy_J", "2", "nan", "nan", "J"}));
+}
+
+// A measured headline that is nan or inf ends the run (NonFiniteResult: exit status 3 with
+// guarded_main) after summary.csv is written; a not_measured row is written as nan and passes.
+TEST(IoCase, NonFiniteHeadlineIsAnErrorUnlessNotMeasured)
+{
+    const std::string out = temp_path("case_nonfinite");
+    const char* argv[] = {"case_test", "--out", out.c_str()};
+    const double nan = std::nan("");
+    for (const double bad : {nan, double(INFINITY)}) {
+        pd::io::Case run("case_test", "finish with a non-finite headline", out);
+        run.start(3, argv);
+        run.summary({{"speed_m_s", 5000, 5100, pd::io::relative_error(5000, 5100), "m/s"}, {"energy_J", bad, nan, nan, "J"}});
+        EXPECT_THROW(run.finish("done"), pd::NonFiniteResult);
+        const auto t = pd::io::read_csv(out + "/summary.csv");
+        ASSERT_EQ(t.rows.size(), 2u);
+        EXPECT_EQ(t.rows[1].fields[0], "energy_J");
+    }
+    pd::io::Case run("case_test", "finish with a quantity not measured", out);
+    run.start(3, argv);
+    run.summary({{"speed_m_s", 5000, 5100, pd::io::relative_error(5000, 5100), "m/s"}, pd::io::not_measured("nodes_refined", 26644, "-")});
+    EXPECT_EQ(run.finish("done"), 0);
+    const auto t = pd::io::read_csv(out + "/summary.csv");
+    ASSERT_EQ(t.rows.size(), 2u);
+    EXPECT_EQ(t.rows[1].fields, (std::vector<std::string>{"nodes_refined", "nan", "26644", "nan", "-"}));
 }
 
 TEST(IoConvergence, SecondOrderErrorGivesRateTwo)

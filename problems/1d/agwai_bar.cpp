@@ -66,7 +66,7 @@ Outcome run_bar(const Bar& cs, int N, pd::HeatIntegrator scheme, double step)
     o.dt_crit = pd::thermal_critical_step(model, bonds, heat, std::vector<double>(body.size(), T_start));
     o.reach = pd::time_to_reach(heat, model, bonds, std::vector<double>(body.size(), T_start), scheme, step, opt,
                                 cs.t_max, centre, T_target);
-    if (!o.reach.reached) throw std::runtime_error("the centre did not reach 50 C within --t-max");
+    if (!o.reach.reached) throw std::invalid_argument("the centre did not reach 50 C within --t-max (raise --t-max, or check --k, --rho, --c, --length)");
     return o;
 }
 

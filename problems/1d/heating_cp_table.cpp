@@ -57,7 +57,7 @@ pd::ReachResult heat_to(const Heating& cs, pd::HeatIntegrator scheme, double ste
     const double t_max = 2 * cs.rho * 827063.84 / cs.s;  // twice the time to 1200 C from 20 C
     auto r = pd::time_to_reach(heat, model, bonds, std::vector<double>(body.size(), cs.T0), scheme, step, opt, t_max,
                                mean, target);
-    if (!r.reached) throw std::runtime_error("the mesh did not reach " + std::to_string(target) + " C");
+    if (!r.reached) throw std::invalid_argument("the mesh did not reach " + std::to_string(target) + " C (check --source, --rho, --T-end)");
     return r;
 }
 

@@ -65,7 +65,7 @@ int run_case(int argc, char** argv)
     opt.add("tau", 1, "relaxation time tau_b", "s");
     opt.add("omega-min", 0.01, "lowest angular frequency of the grid", "rad/s");
     opt.add("omega-max", 100, "highest angular frequency of the grid", "rad/s");
-    opt.add_int("points", 41, "frequencies of the grid (log spaced)");
+    opt.add_int("points", 41, "frequencies of the grid (log spaced; --quick: 17)");
     opt.add_int("steps-per-period", 200, "time steps per period");
     opt.add_int("periods", 4, "periods measured after the transient");
     for (const char* p : {"E-inf", "tau", "omega-min", "omega-max"}) opt.require_positive(p);
@@ -75,11 +75,11 @@ int run_case(int argc, char** argv)
     opt.require_at_least("periods", 1);
     run.parse(argc, argv);
     if (!(opt.get("omega-max") > opt.get("omega-min"))) opt.fail("--omega-max must be above --omega-min");
+    run.quick_default("points", 17);
     run.start();
-    const bool quick = run.quick();
     const double E_inf = opt.get("E-inf"), E_b = opt.get("E-b"), tau = opt.get("tau");
     const double w_min = opt.get("omega-min"), w_max = opt.get("omega-max");
-    const int points = quick ? std::min(opt.get_int("points"), 17) : opt.get_int("points");
+    const int points = opt.get_int("points");
     const int N = opt.get_int("steps-per-period"), periods = opt.get_int("periods");
     const pd::io::Timer timer;
 

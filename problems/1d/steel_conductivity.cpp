@@ -104,7 +104,7 @@ pd::ReachResult t_cross(const Setup& cs, int N, pd::HeatIntegrator scheme, doubl
     opt.rtol = step, opt.atol = step * std::abs(cs.T_end);
     const auto r = pd::time_to_reach(heat, bar.model, bar.bonds, theta0, scheme, step, opt, 1e5, centre, cs.T_target);
     if (picard) *picard = heat.picard_total;  // Picard iterations of implicit Euler (one sparse LU each)
-    if (!r.reached) throw std::runtime_error("the centre did not reach --T-target within 1e5 s");
+    if (!r.reached) throw std::invalid_argument("the centre did not reach --T-target within 1e5 s (check --T-target, --T-end, --rho, --c, --length)");
     return r;
 }
 

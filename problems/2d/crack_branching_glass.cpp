@@ -86,8 +86,8 @@ static int run_case(int argc, char** argv)
     if (std::isnan(sigma)) sigma = duran ? 12e6 : 22e6;
     if (!(a0 < L)) opt.fail("option --crack must be shorter than --length");
     const bool quick = run.quick();
-    const std::vector<double> dxs = quick && !opt.given("dx-list") ? std::vector<double>{1e-3}
-                                                                    : pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
+    run.quick_default("dx-list", "1e-3");
+    const std::vector<double> dxs = pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
     // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
     // wait for a descheduled thread): one thread unless --threads is given.
     run.quick_threads = 1;

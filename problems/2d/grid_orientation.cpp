@@ -69,8 +69,8 @@ static int run_case(int argc, char** argv)
     run.parse(argc, argv);
     if (!(a0 < L)) opt.fail("option --crack must be shorter than --size");
     const bool quick = run.quick();
-    if (quick && !opt.given("dx")) dx = 4e-3;
-    if (quick && !opt.given("t-end")) t_end = 200e-6;
+    run.quick_default("dx", 4e-3);
+    run.quick_default("t-end", 200e-6);
     // Runs (rotation [deg], m): by default 0/3, 10/3, 10/6 (the horizontal, deviated and corrected
     // cases of spec/002 Table 5.2; quick: 0/3, 10/3); all pairs of --angles and --m-list if either is given.
     std::vector<std::pair<double, double>> runs_list;

@@ -66,9 +66,9 @@ static int run_case(int argc, char** argv)
     run.parse(argc, argv);
     if (!(a0 < L) || !(gap < H)) opt.fail("option --notch/--notch-distance: notches must lie inside the plate");
     const bool quick = run.quick();
-    if (quick && !opt.given("t-end")) t_end = 50e-6;  // initiation and the run of the cracks
-    const std::vector<double> dxs = quick && !opt.given("dx-list") ? std::vector<double>{1e-3}
-                                                                    : pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
+    run.quick_default("t-end", 50e-6);  // initiation and the run of the cracks
+    run.quick_default("dx-list", "1e-3");
+    const std::vector<double> dxs = pd::io::list_option(opt, "dx-list", pd::io::ListValues::positive);
     // Quick scenes are too small to gain from threads (and a loaded machine makes each OpenMP barrier
     // wait for a descheduled thread): one thread unless --threads is given.
     run.quick_threads = 1;

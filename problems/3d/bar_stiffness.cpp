@@ -136,7 +136,7 @@ static int run_case(int argc, char** argv)
     for (const char* o : {"n-max", "max-iter", "newton-max-iter"}) opt.require_at_least(o, 1);
     run.parse(argc, argv);
     bar_opt.validate(opt);
-    if (run.quick() && !opt.given("n-max")) n_max = 2;
+    run.quick_default("n-max", 2);
     run.start();
     std::vector<int> ns;
     for (int n : {1, 2, 4, 5, 8, 10}) if (n <= n_max) ns.push_back(n);

@@ -60,9 +60,8 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("seeds", 1);
     run.parse(argc, argv);
     if (!(s_sd >= 0)) opt.fail("option --s-sd must be >= 0");
-    const bool quick = run.quick();
-    if (quick && !opt.given("size")) L = 0.15;
-    if (quick && !opt.given("seeds")) seeds = 2;
+    run.quick_default("size", 0.15);
+    run.quick_default("seeds", 2);
     if (!opt.given("t-end")) t_end *= (8e-3 / speed) * (L / 0.5);
     run.start();
     const std::filesystem::path& out = run.out();

@@ -97,8 +97,8 @@ static int run_case(int argc, char** argv)
     run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const std::vector<double> C_hg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
-    if (run.quick() && !opt.given("n")) n = 5;
-    if (run.quick() && !opt.given("n2")) n2 = 8;
+    run.quick_default("n", 5);
+    run.quick_default("n2", 8);
     if (n2 == 1) opt.fail("option --n2: 0 (no 2D) or at least 2");
     run.start();
     auto wants = [&](const char* name) { return which == "all" || which == name; };

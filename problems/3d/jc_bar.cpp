@@ -145,8 +145,8 @@ static int run_case(int argc, char** argv)
     run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     if (plastic_part > 1) opt.fail("option --plastic-part must be <= 1");
-    if (run.quick() && !opt.given("steps")) steps = 25;
-    if (run.quick() && !opt.given("cells")) n = 2;
+    run.quick_default("steps", 25);
+    run.quick_default("cells", 2);
     run.start();
     const std::filesystem::path& out = run.out();
 
@@ -208,7 +208,9 @@ static int run_case(int argc, char** argv)
                      {"offset_yield_vs_curve_at_0.002_" + name, o.offset_yield, jc.hardening(0.002),
                       pd::io::relative_error(o.offset_yield, jc.hardening(0.002)), "Pa"},
                      {"E_initial_" + name, o.E_init, E, pd::io::relative_error(o.E_init, E), "Pa"},
-                     {"ep_corner_over_centre_at_first_yield_" + name, o.corner_ratio, NAN, NAN, "-"},
+                     // inf when the corner yields while the centre is still elastic: a ratio not measured
+                     std::isfinite(o.corner_ratio) ? pd::io::SummaryRow{"ep_corner_over_centre_at_first_yield_" + name, o.corner_ratio, NAN, NAN, "-"}
+                                                   : pd::io::not_measured("ep_corner_over_centre_at_first_yield_" + name, NAN, "-"),
                      {"sigma_eng_last_" + name, o.sigma_eng, NAN, NAN, "Pa"},
                      {"first_yield_step_centre_" + name, double(o.yield_centre), NAN, NAN, "-"},
                      {"first_yield_step_corner_" + name, double(o.yield_corner), NAN, NAN, "-"},

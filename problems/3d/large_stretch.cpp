@@ -67,10 +67,9 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("max-iter", 1);
     run.parse(argc, argv);
     bar_opt.validate(opt);
-    const bool quick = run.quick();
-    if (quick && !opt.given("n")) n = 2;
-    if (quick && !opt.given("steps")) steps = 10;
-    if (quick && !opt.given("strain")) strain = 0.5;  // n = 2: PALS turns its two-layer section inside out at 0.7
+    run.quick_default("n", 2);
+    run.quick_default("steps", 10);
+    run.quick_default("strain", 0.5);  // n = 2: PALS turns its two-layer section inside out at 0.7
     run.start();
 
     // 2. Discretisation: bar plus grips; gauge layers at 0.5 l2 -+ delta, the mid-length layers.

@@ -104,11 +104,10 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("C-hg", 0);
     run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
-    const bool quick = run.quick();
-    if (quick && !opt.given("n")) n = 2;
-    if (quick && !opt.given("steps")) steps = 20;
-    if (quick && !opt.given("repeats")) repeats = 2;
-    if (quick && !opt.given("block")) block = 5;
+    run.quick_default("n", 2);
+    run.quick_default("steps", 20);
+    run.quick_default("repeats", 2);
+    run.quick_default("block", 5);
     run.start();
 
     // 2. Discretisation: bar plus clamp zones ceil(2 delta/dx) cells long at both ends (outside).

@@ -130,15 +130,15 @@ int run_case(int argc, char** argv)
     opt.add("nu", 0.29, "Poisson's ratio", "-");
     opt.add("rho", 3200, "density (assumed)", "kg/m^3");
     opt.add("Gc", 109.94, "fracture energy G_c = J_C", "J/m^2");
-    double& delta = opt.add("delta", 0.75e-3, "horizon (the published grid; --quick: 1.5e-3)", "m");
+    opt.add("delta", 0.75e-3, "horizon (the published grid; --quick: 1.5e-3)", "m");
     opt.add("m", 3.05, "horizon ratio delta/dx", "-");
     opt.add("C-hg", 0.02, "hourglass coefficient", "-");
     opt.add("L", 10e-3, "plate side", "m");
     opt.add("thickness", 1e-3, "plate thickness", "m");
     opt.add("strain", 8e-4, "grip strain at the end of the ramp", "-");
-    opt.add("t-ramp", 500e-6, "ramp duration", "s");
-    opt.add("t-end", 500e-6, "final time", "s");
-    double& no_fail = opt.add("no-fail", 1.5e-3, "no-fail band from each gripped end (2 delta; --quick: 3e-3)", "m");
+    opt.add("t-ramp", 500e-6, "ramp duration (--quick: 150e-6)", "s");
+    opt.add("t-end", 500e-6, "final time (--quick: 120e-6)", "s");
+    opt.add("no-fail", 1.5e-3, "no-fail band from each gripped end (2 delta; --quick: 3e-3)", "m");
     opt.add_string("grips", "outside", "grip layers added outside the plate, or the plate's own end layers", {"outside", "inside"});
     opt.add("dt-factor", 0.5, "safety factor on the Silling-Askari step", "-");
     opt.add_int("sample", 50, "steps between damage samples");
@@ -150,11 +150,12 @@ int run_case(int argc, char** argv)
     const std::vector<double> etas = pd::io::list_option(opt, "etas", pd::io::ListValues::positive);
     for (double e : etas)
         if (!(e > 1)) opt.fail("--etas values must be > 1");
-    const bool quick = run.quick();
-    if (quick && !opt.given("delta")) delta = 1.5e-3;  // the coarse grid, 20 x 20 x 2 nodes
-    if (quick && !opt.given("no-fail")) no_fail = 3e-3;
-    const std::vector<std::string> runs = quick && !opt.given("runs") ? std::vector<std::string>{"stretch", "micro"}
-                                                                     : pd::io::list_choices(opt, "runs", {"none", "stretch", "micro", "visco"});
+    run.quick_default("delta", 1.5e-3);  // the coarse grid, 20 x 20 x 2 nodes
+    run.quick_default("no-fail", 3e-3);
+    run.quick_default("runs", "stretch,micro");
+    run.quick_default("t-ramp", 150e-6);
+    run.quick_default("t-end", 120e-6);
+    const std::vector<std::string> runs = pd::io::list_choices(opt, "runs", {"none", "stretch", "micro", "visco"});
     run.start();
     const std::filesystem::path& out = run.out();
 
@@ -164,7 +165,7 @@ int run_case(int argc, char** argv)
     s.mat = pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu"));
     s.delta = opt.get("delta"), s.dx = s.delta / opt.get("m");
     s.L = opt.get("L"), s.thick = opt.get("thickness"), s.a = s.L / 2, s.rho = opt.get("rho"), s.Gc = opt.get("Gc");
-    s.strain = opt.get("strain"), s.t_ramp = quick ? 150e-6 : opt.get("t-ramp"), s.t_end = quick ? 120e-6 : opt.get("t-end");
+    s.strain = opt.get("strain"), s.t_ramp = opt.get("t-ramp"), s.t_end = opt.get("t-end");
     s.no_fail = opt.get("no-fail"), s.C_hg = opt.get("C-hg"), s.sample = opt.get_int("sample");
     const bool inside = opt.get_string("grips") == "inside";
     const double Lb = std::lround(s.L / s.dx) * s.dx, g = inside ? 0 : pd::grip_layers(s.delta, s.dx) * s.dx;  // [m]

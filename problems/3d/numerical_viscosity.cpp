@@ -92,7 +92,7 @@ int run_case(int argc, char** argv)
     opt.add("m", 3.05, "horizon ratio delta/dx", "-");
     opt.add("gamma0", 1e-4, "engineering shear strain amplitude", "-");
     opt.add_int("n", 5, "nodes per cube side");
-    opt.add_int("steps-per-period", 200, "time steps per period");
+    opt.add_int("steps-per-period", 200, "time steps per period (--quick: 50)");
     opt.add_int("periods", 4, "periods measured after the transient");
     for (const char* p : {"E", "rho", "delta", "gamma0"}) opt.require_positive(p);
     opt.require_range("nu", -1, 0.5, false, false);
@@ -100,11 +100,12 @@ int run_case(int argc, char** argv)
         opt.require_at_least(name, lo);
     run.parse(argc, argv);
     if (!(opt.get("eta") > 1)) opt.fail("--eta must be > 1");
+    run.quick_default("steps-per-period", 50);
     run.start();
     const bool quick = run.quick();
     const pd::Elastic mat = pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu"));
     const double rho = opt.get("rho"), dx = opt.get("delta") / opt.get("m"), eta = opt.get("eta"), g0 = opt.get("gamma0");
-    const int n = opt.get_int("n"), N = quick ? 50 : opt.get_int("steps-per-period"), periods = opt.get_int("periods");
+    const int n = opt.get_int("n"), N = opt.get_int("steps-per-period"), periods = opt.get_int("periods");
     const pd::io::Timer timer;
 
     // 2. Parameters (8.27-8.29) for the thesis' three eta and the chosen one.

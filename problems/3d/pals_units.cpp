@@ -83,7 +83,7 @@ static int run_case(int argc, char** argv)
     double& spread_tol = opt.add("spread-tol", 1e-8, "--check bound on max |E_units/E_SI - 1| (round-off, see report)");
     std::string& units = opt.add_string("units", "all", "unit systems", {"all", "si", "mmgs", "cgs"});
     std::string& which = opt.add_string("model", "all", "model (default: per grid entry)", {"all", "pmb", "lps", "lps-scf", "pals", "correspondence"});
-    std::string& grid = opt.add_string("grid", "standard", "(dx, SF) pairs: standard subset or Table 4.2 rows (LPS, PALS)", {"standard", "table"});
+    std::string& grid = opt.add_string("grid", "standard", "(dx, SF) pairs: standard subset (--quick: its first) or Table 4.2 rows (LPS, PALS)", {"standard", "table"});
     opt.add_string("sf", "0.5", "safety factors dt/dt_crit, comma-separated (replaces --grid: all --dx x --sf)");
     opt.add_string("dx", "1e-3,0.75e-3,1.5e-3", "lattice spacings [m], comma-separated (replaces --grid: all --dx x --sf)");
     for (const char* o : {"E", "rho", "length", "width", "thickness", "strain", "t-ramp", "spread-tol"}) opt.require_positive(o);
@@ -95,7 +95,7 @@ static int run_case(int argc, char** argv)
     const bool product = opt.given("sf") || opt.given("dx");
     if (product && opt.given("grid")) opt.fail("option --grid cannot be combined with --sf or --dx");
     const bool quick = run.quick();
-    if (quick && !opt.given("t-ramp")) t_ramp = 1e-4;
+    run.quick_default("t-ramp", 1e-4);
     run.start();
 
     // The runs (dx [m], SF, models); --model overrides the models of every entry.
@@ -107,7 +107,7 @@ static int run_case(int argc, char** argv)
         for (auto [dx, sf] : std::vector<std::pair<double, double>>{{1, .5}, {1, .4}, {1, .3}, {1, .2}, {1, .1}, {.75, .5}, {.75, .4},
                                                                    {.75, .3}, {.75, .2}, {1.5, .1}, {1.5, .02}, {1.5, .005}, {1.5, .001}})
             cases.push_back({dx * 1e-3, sf, tab});
-    else if (quick) cases = {{1.5e-3, 0.5, all}};
+    else if (quick && !opt.given("grid")) cases = {{1.5e-3, 0.5, all}};
     else cases = {{1.5e-3, 0.5, all}, {1e-3, 0.5, cheap}, {0.75e-3, 0.5, tab}, {1.5e-3, 0.1, tab}};
     if (opt.given("model")) for (Entry& c : cases) c.models = which == "all" ? all : which;
     std::vector<Units> systems{{"si", 1, 1, 1}, {"mmgs", 1e-3, 1e-3, 1}, {"cgs", 1e-2, 1e-3, 1}};

@@ -59,7 +59,7 @@ int run_case(int argc, char** argv)
     opt.add("gamma-b", 1, "Maxwell branch stiffness ratio G_b/G", "-");
     opt.add("tau", 1e-3, "relaxation time tau_b", "s");
     opt.add("gamma0", 1e-3, "engineering shear strain of the step / ramp", "-");
-    opt.add_int("n", 8, "nodes per cube side");
+    opt.add_int("n", 8, "nodes per cube side (--quick: 6)");
     opt.add("dx", 1e-3, "lattice spacing", "m");
     opt.add("m", 3.05, "horizon ratio delta/dx", "-");
     opt.add_int("steps-per-tau", 10, "time steps per relaxation time");
@@ -72,11 +72,12 @@ int run_case(int argc, char** argv)
     opt.require_at_least("m", 1);
     opt.require_at_least("steps-per-tau", 1);
     opt.require_range("gamma0", 0, 0.5, false, true);
-    run.start(argc, argv);
-    const bool quick = run.quick();
+    run.parse(argc, argv);
+    run.quick_default("n", 6);
+    run.start();
     const pd::Elastic mat = pd::Elastic::from_E_nu(opt.get("E"), opt.get("nu"));
     const double G = mat.G, gb = opt.get("gamma-b"), tau = opt.get("tau"), g0 = opt.get("gamma0");
-    const int n = quick ? 6 : opt.get_int("n"), spt = opt.get_int("steps-per-tau");
+    const int n = opt.get_int("n"), spt = opt.get_int("steps-per-tau");
     const double dx = opt.get("dx"), dt = tau / spt;
     const long hold = std::lround(opt.get("hold-tau") * spt), ramp = std::max(1L, std::lround(opt.get("ramp-tau") * spt));
     const pd::io::Timer timer;

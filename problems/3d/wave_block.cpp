@@ -108,9 +108,9 @@ static int run_case(int argc, char** argv)
     run.parse(argc, argv);
     if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const bool quick = run.quick();
-    if (quick && !opt.given("dx")) dx = 2e-3;
-    if (quick && !opt.given("length")) L = 0.3;
-    if (quick && !opt.given("width")) W = 4e-3;
+    run.quick_default("dx", 2e-3);
+    run.quick_default("length", 0.3);
+    run.quick_default("width", 4e-3);
     run.start();
     const std::filesystem::path& out = run.out();
     pd::io::Timer timer;

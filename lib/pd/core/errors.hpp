@@ -2,6 +2,9 @@
 // them and io/guarded_main.hpp may map them to exit statuses without including an integrator.
 //   Unstable: a run that became unstable (non-finite state, energy blow-up); names the step and
 //   the node (exit status 3). Invalid scenes and inputs throw std::invalid_argument (status 2).
+//   SolverFailure: an implicit solver could not continue the run (exit status 3, one line).
+//   NonFiniteResult: a headline result of a finished run is nan or inf (exit status 3 too: the run's
+//   numbers are not to be trusted, whether or not --check was given).
 //   require_memory: a scene too large for this machine is refused before it is allocated (status 2).
 #pragma once
 #include <unistd.h>
@@ -16,6 +19,15 @@ struct Unstable : std::runtime_error {
     long step;  // the step at which the guard fired
     int node;   // the node named in the message (0 when the guard is global)
     Unstable(const std::string& what, long step, int node) : std::runtime_error(what), step(step), node(node) {}
+};
+
+// A solver (CVODE, Newton) that could not continue a run past some time; one line (status 3).
+struct SolverFailure : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct NonFiniteResult : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 // The machine's physical memory [bytes] (0 when unknown).

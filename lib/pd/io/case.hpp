@@ -21,9 +21,11 @@
 #include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
+#include "pd/core/errors.hpp"
 #include "pd/core/parallel.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
@@ -93,6 +95,13 @@ public:
     }
 
     bool quick() const { return quick_; }
+    // The coarse value of an option under --quick, unless the user gave it (between parse() and
+    // start(): params.csv records the value that runs). --quick never overrides a given value.
+    template <class V>
+    void quick_default(const std::string& name, const V& value)
+    {
+        if (quick_) opt.set_default(name, value);
+    }
     const std::filesystem::path& out() const { return out_; }
     std::filesystem::path file(const std::string& name) const { return out_ / name; }
 
@@ -108,10 +117,16 @@ public:
     void print_summary(int name_width, int digits = 6) const { pd::io::print_summary(rows_, name_width, digits); }
 
     // Writes summary.csv (when there are rows), prints `verdict: PASS|FAIL: <headline>` and returns
-    // the exit status: 1 when --check is given and a check failed, else 0.
+    // the exit status: 1 when --check is given and a check failed, else 0. A measured row whose value
+    // is nan or inf throws NonFiniteResult naming it (status 3 with guarded_main), after summary.csv
+    // is written; a quantity the run does not measure is a not_measured row (csv.hpp).
     [[gnu::format(printf, 2, 3)]] int finish(const char* headline, ...)
     {
         if (!rows_.empty()) write_summary(out_ / "summary.csv", rows_);
+        for (const SummaryRow& r : rows_)
+            if (r.measured && !std::isfinite(r.value))
+                throw NonFiniteResult("non-finite result: " + r.quantity + " = " + (std::isnan(r.value) ? "nan" : r.value > 0 ? "inf" : "-inf") +
+                                      " (summary.csv written; the run's numbers are not to be trusted)");
         char text[1024];
         va_list args;
         va_start(args, headline);

@@ -299,7 +299,19 @@ struct SummaryRow {
     double reference = std::numeric_limits<double>::quiet_NaN();    // published / analytic [unit]
     double rel_error = std::numeric_limits<double>::quiet_NaN();    // |value - reference| / |reference|
     std::string unit;                                               // SI unit, "-" if none
+    // false: a quantity this run does not measure (the published value is listed for comparison,
+    // or a feature the run did not show, e.g. no second peak); its value is written as nan. A
+    // measured value must be finite (Case::finish ends a run with a non-finite one with status 3).
+    bool measured = true;
 };
+
+// A row for a quantity that this run does not measure (value nan, kept in the table so that the
+// published reference stays beside the measured rows).
+inline SummaryRow not_measured(std::string quantity, double reference, std::string unit)
+{
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {std::move(quantity), nan, reference, nan, std::move(unit), false};
+}
 
 // |value - reference| / |reference|; NaN when the reference is NaN or zero (undefined).
 inline double relative_error(double value, double reference)
@@ -322,8 +334,11 @@ inline void print_summary(const std::vector<SummaryRow>& rows, int name_width, i
 {
     std::printf("\n%-*s %14s %14s %10s  %s\n", name_width, "quantity", "value", "reference", "rel_error", "unit");
     for (const auto& r : rows)
-        std::printf("%-*s %14.*g %14.*g %10.3e  %s\n", name_width, r.quantity.c_str(), digits, r.value, digits, r.reference, r.rel_error,
-                    r.unit.c_str());
+        if (r.measured)
+            std::printf("%-*s %14.*g %14.*g %10.3e  %s\n", name_width, r.quantity.c_str(), digits, r.value, digits, r.reference, r.rel_error,
+                        r.unit.c_str());
+        else
+            std::printf("%-*s %14s %14.*g %10s  %s\n", name_width, r.quantity.c_str(), "not measured", digits, r.reference, "", r.unit.c_str());
 }
 
 // ------------------------------------------------------------------------------------- reader

@@ -1,6 +1,8 @@
 // pd/io/guarded_main.hpp -- the exit-status contract of every executable, in one place:
 //   0 done, 1 a --check failed (the driver returns it), 2 invalid input (one line naming it),
-//   3 the run became unstable (step and node named; files written so far are kept).
+//   3 the run became unstable (step and node named; files written so far are kept) or ended with a
+//     non-finite headline result (the quantity named; summary.csv is written first) or a solver
+//     could not continue it (SolverFailure).
 // Library calls reject impossible scenes with std::invalid_argument (empty node set, lattice
 // thinner than a cell, dx <= 0, ...); here they become the one-line message and status 2.
 //
@@ -21,6 +23,12 @@ int guarded_main(const char* program, Fn&& fn)
     try {
         return fn();
     } catch (const Unstable& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return 3;
+    } catch (const SolverFailure& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return 3;
+    } catch (const NonFiniteResult& e) {
         std::fprintf(stderr, "%s: %s\n", program, e.what());
         return 3;
     } catch (const std::invalid_argument& e) {

@@ -258,6 +258,22 @@ void Options::require_range(const std::string& name, double lo, double hi, bool 
 
 double Options::get(const std::string& name) const { return numeric(name); }
 
+void Options::set_default(const std::string& name, double value)
+{
+    Entry& e = lookup(name);
+    if (e.given) return;
+    if (e.kind == Kind::Real) e.real = value;
+    else if (e.kind == Kind::Int && value == std::trunc(value)) e.integer = static_cast<int>(value);
+    else throw std::logic_error(program_ + ": set_default(" + name + "): not a real or an integral int value");
+}
+
+void Options::set_default(const std::string& name, const std::string& value)
+{
+    Entry& e = lookup(name);
+    if (e.kind != Kind::String) throw std::logic_error(program_ + ": set_default(" + name + "): not a string option");
+    if (!e.given) e.text = value;
+}
+
 int Options::get_int(const std::string& name) const
 {
     const Entry& e = lookup(name);

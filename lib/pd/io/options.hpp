@@ -91,6 +91,11 @@ public:
     bool get_flag(const std::string& name) const;
     bool has(const std::string& name) const;            // registered?
     bool given(const std::string& name) const;          // set on the command line?
+    // A default that depends on other options (--quick's coarse case): replaces the value of a
+    // real, integer or string option that was NOT given on the command line; a given value stays.
+    // Called between parse() and echo()/save_csv(), so that params.csv records the value used.
+    void set_default(const std::string& name, double value);
+    void set_default(const std::string& name, const std::string& value);
 
     // One line per option, in registration order: `  name = value [unit]` (no brackets when the
     // option has no unit). Doubles are written in the shortest form that reads back exactly.

@@ -7,6 +7,8 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "pd/core/errors.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -22,6 +24,17 @@ struct CvodeBdf::Impl {
     Rhs rhs;
     Jacobian jac;
     SparseRowMajor Jeigen;
+    double t0 = 0;
+    std::string last_message;  // CVODE's last error or warning text, one line (its handler, below)
+
+    // CVODE's messages (errors and warnings such as "t + h = t") go here instead of stderr: a failure
+    // becomes one exception line that quotes the last of them.
+    static void on_message(int, const char*, const char* function, char* msg, void* user)
+    {
+        std::string text = std::string(function) + ": " + msg;
+        std::replace(text.begin(), text.end(), '\n', ' ');
+        static_cast<Impl*>(user)->last_message = text;
+    }
 
     static int f(realtype t, N_Vector y, N_Vector ydot, void* user)
     {
@@ -62,6 +75,18 @@ void check(int flag, const char* what)
 }
 }  // namespace
 
+// A failed integration: at the initial time the solver cannot take a single step, so the input's
+// time scale (material constants, sizes) is out of its reach: std::invalid_argument (status 2);
+// later it is a run that could not be continued: SolverFailure (status 3). One line each.
+void CvodeBdf::fail(int flag, const char* what) const
+{
+    const std::string text = std::string("CVODE ") + what + " failed (flag " + std::to_string(flag) + ")" +
+                             (impl_->last_message.empty() ? "" : ": " + impl_->last_message);
+    if (t_ == impl_->t0)
+        throw std::invalid_argument(text + " -- at the initial time: the time scale of the input (material constants, sizes) is beyond the solver");
+    throw SolverFailure(text);
+}
+
 CvodeBdf::CvodeBdf(std::vector<double> y0, double t0, Rhs rhs, Jacobian jac, const CvodeOptions& opt)
     : impl_(std::make_unique<Impl>()), y_(std::move(y0)), t_(t0)
 {
@@ -82,6 +107,8 @@ CvodeBdf::CvodeBdf(std::vector<double> y0, double t0, Rhs rhs, Jacobian jac, con
     if (!m.mem) throw std::runtime_error("CvodeBdf: CVodeCreate failed");
     check(CVodeInit(m.mem, &Impl::f, t0, m.y), "CVodeInit");
     check(CVodeSetUserData(m.mem, &m), "CVodeSetUserData");
+    check(CVodeSetErrHandlerFn(m.mem, &Impl::on_message, &m), "CVodeSetErrHandlerFn");
+    m.t0 = t0;
     check(CVodeSStolerances(m.mem, opt.rtol, opt.atol), "CVodeSStolerances");
     check(CVodeSetLinearSolver(m.mem, m.LS, m.J), "CVodeSetLinearSolver");
     check(CVodeSetJacFn(m.mem, &Impl::jacobian), "CVodeSetJacFn");
@@ -95,10 +122,11 @@ CvodeBdf::~CvodeBdf() = default;
 void CvodeBdf::integrate(double t_out, int task, const char* what)
 {
     realtype t = t_;
-    check(CVode(impl_->mem, t_out, impl_->y, &t, task), what);
-    t_ = t;
+    const int flag = CVode(impl_->mem, t_out, impl_->y, &t, task);
+    t_ = t;  // on a failure: where the solver stopped
     const double* p = N_VGetArrayPointer(impl_->y);
     std::copy(p, p + y_.size(), y_.begin());
+    if (flag < 0) fail(flag, what);
 }
 
 const std::vector<double>& CvodeBdf::advance(double t_out)

@@ -35,7 +35,9 @@ public:
     CvodeBdf(const CvodeBdf&) = delete;
     CvodeBdf& operator=(const CvodeBdf&) = delete;
 
-    // Integrates to t_out [s] and returns y(t_out). Throws std::runtime_error with CVODE's flag on failure.
+    // Integrates to t_out [s] and returns y(t_out). A failure throws one line quoting CVODE's message:
+    // std::invalid_argument when no step can be taken from the initial time (the input's time
+    // scale), else SolverFailure (core/errors.hpp); CVODE prints nothing itself.
     const std::vector<double>& advance(double t_out);
     // One internal step towards t_stop [s] (never past it); returns the new time. y() is the state there.
     double step(double t_stop);
@@ -49,6 +51,7 @@ public:
 
 private:
     void integrate(double t_out, int task, const char* what);
+    [[noreturn]] void fail(int flag, const char* what) const;
     std::unique_ptr<Impl> impl_;
     std::vector<double> y_;
     double t_ = 0;

@@ -1,0 +1,60 @@
+// tests/test_cvode_failures.cpp -- a failed CVODE integration is one line, and CVODE prints nothing
+// itself (issue 18, finding 8): no step possible from the initial time is an input error
+// (std::invalid_argument, exit status 2), a failure later in the run a SolverFailure (status 3).
+#include "pd/core/errors.hpp"
+#include "pd/time/cvode_bdf.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+using Sparse = pd::CvodeBdf::SparseRowMajor;
+
+void one_by_one(double value, Sparse& J)
+{
+    J.resize(1, 1);
+    J.setZero();
+    J.insert(0, 0) = value;
+}
+
+// y' = NaN: the error test fails at every step size, so CVODE cannot leave t = 0.
+TEST(CvodeFailures, NoStepFromTheInitialTimeIsAnInputErrorOfOneLine)
+{
+    pd::CvodeBdf solver({1.0}, 0.0, [](double, const double*, double* ydot) { ydot[0] = std::nan(""); },
+                        [](double, const double*, Sparse& J) { one_by_one(0.0, J); });
+    testing::internal::CaptureStderr();
+    try {
+        solver.advance(1.0);
+        FAIL() << "no exception";
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        EXPECT_NE(what.find("initial time"), std::string::npos) << what;
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
+// y' = y^2, y(0) = 1: y = 1/(1 - t) blows up at t = 1; CVODE integrates up to close to it, then fails.
+TEST(CvodeFailures, AFailureLaterInTheRunIsASolverFailureOfOneLine)
+{
+    pd::CvodeOptions opt;
+    opt.max_steps = 2000;
+    pd::CvodeBdf solver({1.0}, 0.0, [](double, const double* y, double* ydot) { ydot[0] = y[0] * y[0]; },
+                        [](double, const double* y, Sparse& J) { one_by_one(2 * y[0], J); }, opt);
+    testing::internal::CaptureStderr();
+    try {
+        solver.advance(2.0);
+        FAIL() << "no exception";
+    } catch (const pd::SolverFailure& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        EXPECT_GT(solver.time(), 0.5);  // the run got well past its start
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
+}  // namespace
