@@ -16,8 +16,10 @@
 // Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J),
 //         DIR/state_stepNNNN.csv (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,damage][,T,Q_W_m3]), DIR/state_stepNNNN.vtu +
 //         state.pvd, with --heat DIR/heat.csv (thermal_step,t_s,heat_J,T_min,T_max).
+// Checkpoints (problems/pd_run_checkpoint.hpp): --checkpoint-every k, --restart FILE; SIGINT/SIGTERM
+// stop after the current step with a checkpoint.
 // Exit status: 0 done; 2 invalid input (one line naming the option or file:line); 3 unstable run
-// (files written before the blow-up are kept). User page: reports/pd_run.md.
+// (files written before the blow-up are kept); 128 + signal after SIGINT/SIGTERM. User page: reports/pd_run.md.
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
 #include "pd/models/registry.hpp"
@@ -97,7 +99,9 @@ int run(Run cfg, const pd::io::PointCloud& pc)
 
 int main(int argc, char** argv)
 {
-    // 1. Options (SI), cross-checks, echo and params.csv.
+    // 1. Options (SI), cross-checks, echo and params.csv. A stop signal from here on ends the run
+    //    after its first or current step, with a checkpoint (pd_run_checkpoint.hpp).
+    catch_stop_signals();
     const double automatic = std::numeric_limits<double>::quiet_NaN();
     pd::io::Options opt(program, "Explicit dynamics (velocity Verlet) and heat conduction of a point cloud read from CSV; see reports/pd_run.md.");
     const std::string& input = opt.add_string("input", "", "point-cloud CSV: x,y,z,volume[,block,vx,vy,vz,ux,uy,uz,fixed,no_fail,T0,T_fixed]");
@@ -127,6 +131,8 @@ int main(int argc, char** argv)
     const double& s0 = opt.add("s0", automatic, "critical stretch > 0: a bond stretched beyond it breaks for good; state "
                                                 "CSV and VTU get the point damage (nan = no bond breaking)");
     const std::string& out = opt.add_string("out", "pd_run_out", "output folder");
+    const int& checkpoint_every = opt.add_int("checkpoint-every", 0, "write OUT/checkpoint.pdstate every k steps (0 = only on SIGINT/SIGTERM)");
+    const std::string& restart = opt.add_string("restart", "", "continue the run saved in this checkpoint (same options; --steps may grow)");
     const int& threads = opt.add_int("threads", 0, "OpenMP threads (0 = OpenMP default)");
     const std::string& mech = opt.add_string("mechanics", "on", "off: heat conduction only (needs --heat)", {"on", "off"});
     const pd_run::HeatOptions heat = pd_run::add_heat_options(opt, automatic);
@@ -138,6 +144,7 @@ int main(int argc, char** argv)
     opt.require_at_least("energy-every", 1);
     opt.require_at_least("vtu-every", 0);
     opt.require_at_least("threads", 0);
+    opt.require_at_least("checkpoint-every", 0);
     opt.parse(argc, argv);
 
     for (const char* name : {"input", "rho", "delta"})
@@ -187,17 +194,13 @@ int main(int argc, char** argv)
         fail(msg);
     }
     cfg.out = out;
+    cfg.checkpoints.every = checkpoint_every;
+    cfg.checkpoints.file = cfg.out / "checkpoint.pdstate";
+    cfg.checkpoints.possible = heat.heat == "none" || heat.integrator != "cvode";
+    if (!cfg.checkpoints.possible && (opt.given("checkpoint-every") || opt.given("restart")))
+        fail(std::string("option --") + (opt.given("restart") ? "restart" : "checkpoint-every") +
+             ": CVODE's internal history is not saved; use --thermal-integrator explicit or implicit");
     pd::set_threads(threads);
-
-    std::cout << program << ": options\n";
-    opt.echo(std::cout);
-    try {
-        std::filesystem::create_directories(cfg.out);
-        pd::io::OutputManifest::begin(cfg.out);  // the previous run's files in --out go first (csv.hpp)
-        opt.save_csv(cfg.out / "params.csv");
-    } catch (const std::exception& e) {
-        fail("option --out: " + std::string(e.what()));
-    }
 
     pd::io::PointCloud pc;
     try {
@@ -206,10 +209,43 @@ int main(int argc, char** argv)
         fail(e.what());
     }
     check_cloud(pc, opt, mechanics, heat.heat != "none");
+    cfg.checkpoints.fingerprint = physics_fingerprint(opt, pc);
+    bool same_folder = false;  // a restart into the folder of its checkpoint continues that run's files
+    if (!restart.empty()) {
+        try {
+            cfg.checkpoints.restart = std::make_shared<pd::StateArchive>(pd::StateArchive::read(restart));
+            std::string saved;
+            (*cfg.checkpoints.restart)("pd_run.physics", saved);
+            if (const std::string diff = first_difference(saved, cfg.checkpoints.fingerprint); !diff.empty())
+                fail("option --restart: the checkpoint is of another run: " + diff);
+            (*cfg.checkpoints.restart)("pd_run.step", cfg.checkpoints.first);
+        } catch (const std::invalid_argument& e) {
+            fail("option --restart: " + std::string(e.what()));
+        }
+        if (cfg.checkpoints.first > cfg.steps)
+            fail("option --" + std::string(mechanics ? "steps" : "thermal-steps") + ": the checkpoint is at step " +
+                 std::to_string(cfg.checkpoints.first) + ", beyond " + std::to_string(cfg.steps));
+        std::error_code ec;
+        same_folder = std::filesystem::equivalent(std::filesystem::path(restart).parent_path().empty() ? "." : std::filesystem::path(restart).parent_path(),
+                                                  cfg.out, ec);
+    }
+
+    std::cout << program << ": options\n";
+    opt.echo(std::cout);
+    try {
+        std::filesystem::create_directories(cfg.out);
+        if (same_folder) pd::io::OutputManifest::resume(cfg.out);  // keeps the files of the run it continues
+        else pd::io::OutputManifest::begin(cfg.out);               // the previous run's files in --out go first (csv.hpp)
+        opt.save_csv(cfg.out / "params.csv");
+    } catch (const std::exception& e) {
+        fail("option --out: " + std::string(e.what()));
+    }
     try {
         if (dim == 1) return run<1>(cfg, pc);
         if (dim == 2) return run<2>(cfg, pc);
         return run<3>(cfg, pc);
+    } catch (const std::invalid_argument& e) {  // a scene the library refuses (e.g. a point far beyond the others)
+        fail(e.what());
     } catch (const std::exception& e) {  // e.g. a write error in the output folder
         std::cerr << program << ": " << e.what() << std::endl;
         return 1;

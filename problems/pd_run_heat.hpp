@@ -10,10 +10,12 @@
 // non-finite one, throws pd::Unstable naming the thermal step and the node.
 // Writes heat.csv: thermal_step,t_s,heat_J (sum rho cv V T),T_min,T_max.
 #pragma once
+#include "pd_run_checkpoint.hpp"
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
 #include "pd/time/heat_cvode.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
@@ -106,8 +108,20 @@ public:
     {
         double H = 0;  // sum rho cv V T [J, relative to T = 0 of the unit given]
         for (std::size_t i = 0; i < T.size(); ++i) H += rho_cv_ * volume_[i] * T[i];
-        log_->row({step, t(), H, *std::min_element(T.begin(), T.end()), *std::max_element(T.begin(), T.end())});
-        log_->flush();
+        log_row({double(step), t(), H, *std::min_element(T.begin(), T.end()), *std::max_element(T.begin(), T.end())});
+    }
+    // Its part of a checkpoint (pd_run_checkpoint.hpp): the field, the step and the rows of heat.csv
+    // (a restart writes them again, those on the cadence or at last_step, so that heat.csv holds the
+    // whole run).
+    void state(pd::StateArchive& ar, long last_step)
+    {
+        ar("heat.T", T), ar("heat.step", step);
+        std::vector<double> rows = ar.saving() ? rows_ : std::vector<double>{};
+        ar("heat.rows", rows);
+        if (ar.saving()) return;
+        open_log();
+        for (std::size_t q = 0; q + 5 <= rows.size(); q += 5)
+            if (on_cadence(long(rows[q]), every_, last_step)) log_row({rows.begin() + q, rows.begin() + q + 5});
     }
 
 protected:
@@ -122,8 +136,8 @@ protected:
         const double width = *mx - *mn, slack = 1e-9 * std::max(std::abs(*mn), std::abs(*mx));  // round-off of a uniform field
         lo_ = *mn - guard_widening * width - slack;
         hi_ = *mx + guard_widening * width + slack;
-        log_ = std::make_unique<pd::io::CsvWriter>(out / "heat.csv",
-                                                   std::vector<std::string>{"thermal_step", "t_s", "heat_J", "T_min", "T_max"});
+        log_path_ = out / "heat.csv";
+        open_log();
         record();  // thermal step 0
     }
 
@@ -131,7 +145,22 @@ private:
     double rho_cv_ = 0, lo_ = 0, hi_ = 0;
     long every_ = 1;
     std::vector<double> volume_;
+    std::filesystem::path log_path_;
     std::unique_ptr<pd::io::CsvWriter> log_;
+    std::vector<double> rows_;  // the rows of heat.csv (5 per row), for a checkpoint
+
+    void open_log()
+    {
+        log_.reset();  // a restart: the first heat.csv is complete before it is written again
+        rows_.clear();
+        log_ = std::make_unique<pd::io::CsvWriter>(log_path_, std::vector<std::string>{"thermal_step", "t_s", "heat_J", "T_min", "T_max"});
+    }
+    void log_row(const std::vector<double>& r)
+    {
+        log_->row({static_cast<long>(r[0]), r[1], r[2], r[3], r[4]});
+        log_->flush();
+        rows_.insert(rows_.end(), r.begin(), r.end());
+    }
 };
 
 template <class Model>

@@ -11,6 +11,7 @@
 #include "pd/core/material.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/time/verlet.hpp"
+#include "pd_run_checkpoint.hpp"
 #include "pd_run_heat.hpp"
 
 #include <algorithm>
@@ -43,22 +44,36 @@ struct Run {
     std::filesystem::path out;
     bool mechanics = true;                             // false: heat only
     HeatSettings heat;                         // heat.model "none": no temperature field
+    Checkpoints checkpoints;                           // --checkpoint-every, --restart (pd_run_checkpoint.hpp)
 };
 
 [[noreturn]] inline void fail(const std::string& msg) { pd::io::fail_input(program, msg); }
 
-// 5. The step loop of both modes: step(n) advances to step n, output(n) writes what step n asks for.
-// Returns the exit status (3 when pd::Unstable stops the run; the files written so far stay).
-template <class Step, class Output>
-int step_loop(long steps, Step&& step, Output&& output)
+// 5. The step loop of both modes, from the checkpoint's step (0 for a new run) to `steps`: step(n)
+// advances to step n, output(n) writes what step n asks for, state(ar) visits the run's checkpoint
+// state (pd_run_checkpoint.hpp), written every cp.every steps and when a stop signal arrived.
+// Returns the exit status: 3 when pd::Unstable stops the run (the files written so far stay),
+// 128 + the signal's number after a stop signal (the checkpoint and the CSV files written).
+template <class Step, class Output, class State>
+int step_loop(const Checkpoints& cp, long steps, Step&& step, Output&& output, State&& state)
 {
     pd::io::Progress progress(program, steps, true);
     try {
-        output(0);
-        for (long n = 1; n <= steps; ++n) {
+        if (!cp.restart) output(0);
+        for (long n = cp.first + 1; n <= steps; ++n) {
             step(n);
             output(n);
             progress.update(n);
+            const int signal = stop_signal;
+            if (cp.possible && ((cp.every > 0 && n % cp.every == 0) || signal != 0)) cp.write(n, state);
+            if (signal != 0) {
+                progress.finish();
+                std::cerr << program << ": stopped by " << (signal == SIGINT ? "SIGINT" : "SIGTERM") << " after step " << n
+                          << (cp.possible ? "; checkpoint " + cp.file.string() + " (continue with --restart " + cp.file.string() + ")"
+                                          : "; no checkpoint with --thermal-integrator cvode")
+                          << std::endl;
+                return 128 + signal;
+            }
         }
     } catch (const pd::Unstable& e) {
         progress.finish();
@@ -72,6 +87,39 @@ int step_loop(long steps, Step&& step, Output&& output)
 inline bool listed(const Run& cfg, long n) { return std::binary_search(cfg.output_steps.begin(), cfg.output_steps.end(), n); }
 inline bool vtu_step(const Run& cfg, long n) { return cfg.vtu_every > 0 && (n % cfg.vtu_every == 0 || n == cfg.steps); }
 
+// The VTU snapshots and their .pvd series; a restart re-lists the snapshots written before it.
+class VtuSeries {
+public:
+    explicit VtuSeries(const Run& cfg) : out_(cfg.out), every_(cfg.vtu_every), last_(cfg.steps)
+    {
+        if (cfg.vtu_every > 0) pvd_ = std::make_unique<pd::io::PvdWriter>(cfg.out / "state.pvd");
+    }
+    template <int D>
+    void write(long n, double t, const pd::io::PointCloud& pc, const pd::io::StateFields<D>& f)
+    {
+        pd::io::write_state_vtu<D>(out_, n, t, pc, f, *pvd_);
+        steps_.push_back(double(n)), times_.push_back(t);
+    }
+    void state(pd::StateArchive& ar)
+    {
+        ar("pd_run.vtu_steps", steps_), ar("pd_run.vtu_times", times_);
+        if (ar.saving() || !pvd_) return;
+        std::vector<double> steps, times;
+        for (std::size_t q = 0; q < steps_.size(); ++q)
+            if (on_cadence(long(steps_[q]), every_, last_)) {
+                pvd_->add(times_[q], pd::io::step_file(out_, long(steps_[q]), "vtu"));
+                steps.push_back(steps_[q]), times.push_back(times_[q]);
+            }
+        steps_ = steps, times_ = times;
+    }
+
+private:
+    std::filesystem::path out_;
+    long every_, last_;
+    std::unique_ptr<pd::io::PvdWriter> pvd_;
+    std::vector<double> steps_, times_;  // of the snapshots written (steps as numbers)
+};
+
 inline void report_heat(const HeatRun& heat)
 {
     const auto [lo, hi] = std::minmax_element(heat.T.begin(), heat.T.end());
@@ -82,16 +130,20 @@ inline void report_heat(const HeatRun& heat)
 template <int D>
 int integrate_heat(const Run& cfg, const pd::io::PointCloud& pc, HeatRun& heat)
 {
-    std::unique_ptr<pd::io::PvdWriter> pvd;
-    if (cfg.vtu_every > 0) pvd = std::make_unique<pd::io::PvdWriter>(cfg.out / "state.pvd");
+    VtuSeries vtu(cfg);
     auto output = [&](long n) {
         if (!listed(cfg, n) && !vtu_step(cfg, n)) return;
         const pd::io::StateFields<D> f{.T = &heat.T, .Q = &heat.heat_flow()};
         if (listed(cfg, n)) pd::io::write_state<D>(cfg.out, n, pc, f);
-        if (vtu_step(cfg, n)) pd::io::write_state_vtu<D>(cfg.out, n, heat.t(), pc, f, *pvd);
+        if (vtu_step(cfg, n)) vtu.write<D>(n, heat.t(), pc, f);
     };
+    auto state = [&](pd::StateArchive& ar) {
+        heat.state(ar, cfg.steps);
+        vtu.state(ar);
+    };
+    if (cfg.checkpoints.restart) state(*cfg.checkpoints.restart);
     pd::io::Timer timer;
-    const int status = step_loop(cfg.steps, [&](long n) { heat.advance(n == cfg.steps); }, output);
+    const int status = step_loop(cfg.checkpoints, cfg.steps, [&](long n) { heat.advance(n == cfg.steps); }, output, state);
     if (status != 0) return status;
     report_heat(heat);
     std::printf("%s: done, %ld thermal steps in %.3g s; wrote %s\n", program, cfg.steps, timer.seconds(), cfg.out.string().c_str());
@@ -125,19 +177,35 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     damage.s0 = cfg.s0;
     if (pc.no_fail_count() > 0) damage.no_fail = pc.no_fail;
     if (cfg.s0 > 0) sim.scene.set_damage(damage);
-    sim.start();
     auto thermal_target = [&](long n) { return heat ? long(std::floor(double(n) * cfg.dt / heat->dt * (1 + 1e-12))) : 0L; };
     const long thermal_total = thermal_target(cfg.steps);
 
     pd::io::CsvWriter energy(cfg.out / "energy.csv", {"step", "t_s", "kinetic_J", "strain_J", "external_work_J", "total_J"});
-    std::unique_ptr<pd::io::PvdWriter> pvd;
-    if (cfg.vtu_every > 0) pvd = std::make_unique<pd::io::PvdWriter>(cfg.out / "state.pvd");
+    std::vector<double> energy_rows;  // the rows of energy.csv, for the checkpoint (6 per row)
+    auto energy_row = [&](const std::vector<double>& r) {
+        energy.row({static_cast<long>(r[0]), r[1], r[2], r[3], r[4], r[5]});
+        energy_rows.insert(energy_rows.end(), r.begin(), r.end());
+    };
+    VtuSeries vtu(cfg);
+    auto state = [&](pd::StateArchive& ar) {  // the run's part of a checkpoint
+        if (ar.saving()) sim.state(ar);
+        else sim.resume(ar);
+        std::vector<double> rows = ar.saving() ? energy_rows : std::vector<double>{};
+        ar("pd_run.energy_rows", rows);
+        if (!ar.saving())
+            for (std::size_t q = 0; q + 6 <= rows.size(); q += 6)
+                if (on_cadence(long(rows[q]), cfg.energy_every, cfg.steps)) energy_row({rows.begin() + q, rows.begin() + q + 6});
+        vtu.state(ar);
+        if (heat) heat->state(ar, thermal_total);
+    };
     pd::Energies last;
+    if (cfg.checkpoints.restart) state(*cfg.checkpoints.restart), last = sim.energies();
+    else sim.start();
     auto output = [&](long n) {  // energy rows every k steps and at the end; states on request
         const bool e_step = n % cfg.energy_every == 0 || n == cfg.steps, s_step = listed(cfg, n), v_step = vtu_step(cfg, n);
         if (!(e_step || s_step || v_step)) return;
         last = sim.check_energy();  // throws pd::Unstable before a blown-up state is written
-        if (e_step) energy.row({n, sim.t, last.kinetic, last.strain, last.external_work, last.total()});
+        if (e_step) energy_row({double(n), sim.t, last.kinetic, last.strain, last.external_work, last.total()});
         if (!(s_step || v_step)) return;
         pd::io::StateFields<D> f{.u = &sim.u, .v = &sim.v};
         std::vector<double> phi;  // point damage [-]
@@ -147,7 +215,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
         }
         if (heat) f.T = &heat->T, f.Q = &heat->heat_flow();
         if (s_step) pd::io::write_state<D>(cfg.out, n, pc, f);
-        if (v_step) pd::io::write_state_vtu<D>(cfg.out, n, sim.t, pc, f, *pvd);
+        if (v_step) vtu.write<D>(n, sim.t, pc, f);
     };
     auto step = [&](long n) {
         sim.step(cfg.dt);
@@ -155,7 +223,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
             while (heat->step < thermal_target(n)) heat->advance(heat->step + 1 == thermal_total);
     };
     pd::io::Timer timer;
-    const int status = step_loop(cfg.steps, step, output);
+    const int status = step_loop(cfg.checkpoints, cfg.steps, step, output, state);
     if (status != 0) return status;
     std::printf("\n  step %ld  t = %.6g s  kinetic %.6g J  strain %.6g J  external work %.6g J  total %.6g J\n",
                 cfg.steps, sim.t, last.kinetic, last.strain, last.external_work, last.total());

@@ -18,15 +18,18 @@
 //   commit()  the trial history becomes the committed one (HistoryModel).
 // DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
 // BondWork* bond_work(const Bonds&) (null: none); template <class Model> void record(const Model&,
-// const Bonds&, const Field<D>& y).
+// const Bonds&, const Field<D>& y); optionally state(StateArchive&), its part of a checkpoint.
+//   state(ar)  the scene's part of a checkpoint (core/state_archive.hpp), see below.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
 #include "pd/core/field.hpp"
 #include "pd/core/lattice.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/kernel_concepts.hpp"
 #include "pd/models/rate_form.hpp"
 
+#include <algorithm>
 #include <functional>
 #include <stdexcept>
 
@@ -38,6 +41,10 @@ concept DamageRule = requires(R& r, Bonds& b, const Field<D>& y, const Model& m)
     r.template bond_work<Model>(b);
     r.template record<Model>(m, b, y);
 };
+
+// A part with its own checkpoint state: state(ar) visits it (core/state_archive.hpp).
+template <class T>
+concept HasState = requires(T& t, StateArchive& ar) { t.state(ar); };
 
 template <int D, class Model>
 class Scene {
@@ -58,6 +65,8 @@ public:
         break_bonds_ = [&rule](Bonds& b, const Field<D>& y) { return rule.break_bonds(b, y); };
         bond_work_ = [&rule](const Bonds& b) { return rule.template bond_work<Model>(b); };
         record_ = [&rule, &m = model, &b = bonds](const Field<D>& y) { rule.template record<Model>(m, b, y); };
+        if constexpr (HasState<Rule>) rule_state_ = [&rule](StateArchive& ar) { rule.state(ar); };
+        else rule_state_ = nullptr;
     }
 
     // One force evaluation (header); returns the bonds broken before it.
@@ -87,12 +96,38 @@ public:
 
     const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
 
+    // The scene's part of a checkpoint: the intact flags, the positions of the last evaluation, the
+    // damage rule's state and the model's. A model with history (or a rate-form stress) keeps its
+    // own by state(ar); any other model is rebuilt on loading from the restored bonds and positions
+    // by the functions that built it (recompute after breaks, the point pass): bit for bit the same.
+    void state(StateArchive& ar)
+    {
+        ar("bonds.intact", bonds.intact);
+        ar("scene.y", y_);
+        ar("scene.y_mid", y_mid_);
+        ar("scene.v_step", v_step_);
+        if (rule_state_) rule_state_(ar);
+        if constexpr (BondDependentModel<Model>)
+            if (!ar.saving() && std::find(bonds.intact.begin(), bonds.intact.end(), std::uint8_t{0}) != bonds.intact.end())
+                model.recompute(bonds);
+        if constexpr (HasState<Model>) {
+            model.state(ar);  // after recompute: the model's own state is the newer one
+        } else {
+            if constexpr (HistoryModel<Model, D>) throw std::logic_error("checkpoint: this history model has no state(ar) yet");
+            if constexpr (D == 3 && RateFormModel<Model>)
+                if (model.rate_form()) throw std::logic_error("checkpoint: the rate-form stress has no state(ar) yet");
+            if constexpr (!HistoryModel<Model, D> && Model::has_point_pass)
+                if (!ar.saving()) model.point_pass(bonds, y_);
+        }
+    }
+
 private:
     Field<D> y_;
     Field<D> y_mid_, v_step_;  // rate form only, else empty
     std::function<long(Bonds&, const Field<D>&)> break_bonds_;
     std::function<const BondWork*(const Bonds&)> bond_work_;
     std::function<void(const Field<D>&)> record_;
+    std::function<void(StateArchive&)> rule_state_;
 
     void advance_rate_form(const Field<D>& u_old, const Field<D>& u, double dt)
     {

@@ -16,6 +16,7 @@
 #include "pd/core/bonds.hpp"
 #include "pd/core/field.hpp"
 #include "pd/core/lattice.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/core/material.hpp"
 #include "pd/damage/singular_nodes.hpp"
 
@@ -89,6 +90,12 @@ struct CriticalStretch {
     void record(const Model& model, const Bonds& b, const Field<D>&)
     {
         if (detach_singular) detached_nodes += mark_singular_nodes(model, b.nodes(), detached);
+    }
+    // Its part of a checkpoint (core/state_archive.hpp): the singular-node marks.
+    void state(StateArchive& ar)
+    {
+        ar("critical_stretch.detached", detached);
+        ar("critical_stretch.detached_nodes", detached_nodes);
     }
 
 private:

@@ -39,6 +39,7 @@
 #include "pd/damage/singular_nodes.hpp"
 #include "pd/core/field.hpp"
 #include "pd/core/lattice.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/core/parallel.hpp"
 
 #include <cmath>
@@ -145,6 +146,20 @@ struct CriticalMicropotential {
         handed_out_ = false;
         y_ = y;
         if (detach_singular) detached_nodes += mark_singular_nodes(model, b.nodes(), detached);  // also wrappers (.model)
+    }
+
+    // Its part of a checkpoint (core/state_archive.hpp), taken between steps: the accumulated bond
+    // work, the positions of the last pass and the singular-node marks.
+    void state(StateArchive& ar)
+    {
+        long components = work_.components;
+        ar("micropotential.components", components);
+        work_.components = static_cast<int>(components);
+        ar("micropotential.rec", rec_);
+        ar("micropotential.w_max", w_max_);
+        ar("micropotential.y", y_);
+        ar("micropotential.detached", detached);
+        ar("micropotential.detached_nodes", detached_nodes);
     }
 
 private:

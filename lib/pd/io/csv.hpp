@@ -135,6 +135,8 @@ private:
 // <out>/.pd_files (recorded when a PendingFile opens, so a killed run's ".part" files are listed too).
 // begin(out) first removes what the previous run's manifest lists (each file and its ".part"), so
 // that a folder never mixes two runs, and nothing else: files the suite did not write stay.
+// resume(out) keeps them and goes on listing: a run restarted from a checkpoint continues the run
+// whose files these are (pd_run --restart).
 class OutputManifest {
 public:
     static constexpr const char* name = ".pd_files";
@@ -153,6 +155,12 @@ public:
         }
         in.close();
         if (!std::ofstream(list, std::ios::trunc)) throw std::runtime_error("cannot write " + list.string());
+        dir() = out;
+    }
+    static void resume(const std::filesystem::path& out)
+    {
+        const std::lock_guard<std::mutex> lock(mutex());
+        if (!std::ofstream(out / name, std::ios::app)) throw std::runtime_error("cannot write " + (out / name).string());
         dir() = out;
     }
     // Lists `file` when it lies below the folder of begin() (no-op before begin, or for files elsewhere).

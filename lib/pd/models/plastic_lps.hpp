@@ -51,6 +51,13 @@ struct PlasticLPS {
         edp_c = edp;
         pts.commit();
     }
+    // Its part of a checkpoint (core/state_archive.hpp): the plastic history and the last point pass.
+    void state(StateArchive& ar)
+    {
+        ar("lps.theta", lps.theta), ar("lps.a_coef", lps.a_coef);
+        ar("plastic_lps.edp_c", edp_c), ar("plastic_lps.edp", edp), ar("plastic_lps.tdev", tdev);
+        pts.state(ar);
+    }
 
     // Trial state at y from the committed history (header).
     // The trial state over a step dt [s] (HistoryModel, kernel_concepts.hpp); without dt: the last step given.

@@ -12,6 +12,7 @@
 #pragma once
 #include "pd/core/bonds.hpp"
 #include "pd/core/field.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/laws/j2.hpp"
 #include "pd/laws/johnson_cook.hpp"
 
@@ -67,6 +68,12 @@ struct PlasticPoints {
         heat_source[i] = dt > 0 ? beta_TQ * r.dissipation / dt : 0.0;  // an instantaneous step: no power
     }
     void commit() { ep_c = ep; }
+    // Its part of a checkpoint (core/state_archive.hpp).
+    void state(StateArchive& ar)
+    {
+        ar("plastic.dt", dt), ar("plastic.temperature", temperature), ar("plastic.ep_c", ep_c), ar("plastic.ep", ep);
+        ar("plastic.dlambda", dlambda), ar("plastic.sigma_eff", sigma_eff), ar("plastic.heat_source", heat_source);
+    }
 };
 
 // Trial deviatoric extension of bond k (i -> j) of the ordinary plastic models (plastic_lps.hpp,

@@ -100,17 +100,29 @@ public:
     // Call after initial u, v and the boundary are set: forces and accelerations at t.
     void start()
     {
-        constrained_.assign(scene.body.size() * D, 0);
-        for (const auto& p : boundary.prescribed)
-            for (int i : p.nodes) constrained_[i * D + p.component] = 1;
+        prepare();
         u_old_.fill(0.0);  // rate form: the pseudo step from the reference (header)
         evaluate(0.0);
         scene.commit();
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
-        double mass = 0;  // [kg]
-        for (std::size_t i = 0; i < scene.body.size(); ++i) mass += rho[i] * scene.body.volume[i];
-        energy_floor_ = 0.5 * mass * roundoff_speed * roundoff_speed;
+    }
+
+    // A checkpoint between steps (core/state_archive.hpp): state(ar) into a saving archive after any
+    // step; resume(ar) instead of start() on an Explicit set up the same way (scene, damage rule,
+    // density, boundary) continues the run bit for bit as the uninterrupted one.
+    void state(StateArchive& ar)
+    {
+        ar("explicit.u", u), ar("explicit.v", v), ar("explicit.a", a);
+        ar("explicit.f", f_), ar("explicit.b", b_);
+        ar("explicit.t", t), ar("explicit.step", step_count), ar("explicit.broken_bonds", broken_bonds);
+        ar("explicit.external_work", external_work_), ar("explicit.initial_energy", initial_energy_);
+        scene.state(ar);
+    }
+    void resume(StateArchive& ar)
+    {
+        prepare();
+        state(ar);
     }
 
     void step(double dt)
@@ -195,6 +207,17 @@ private:
     double initial_energy_ = 0;
     double energy_floor_ = 0;                            // [J]
     static constexpr double roundoff_speed = 1e-10;      // [m/s], see header
+
+    // What start() and resume() share: the constrained components and the energy guard's floor.
+    void prepare()
+    {
+        constrained_.assign(scene.body.size() * D, 0);
+        for (const auto& p : boundary.prescribed)
+            for (int i : p.nodes) constrained_[i * D + p.component] = 1;
+        double mass = 0;  // [kg]
+        for (std::size_t i = 0; i < scene.body.size(); ++i) mass += rho[i] * scene.body.volume[i];
+        energy_floor_ = 0.5 * mass * roundoff_speed * roundoff_speed;
+    }
 
     // Forces and accelerations at u; dt: the step from u_old_ to u (0 in start()).
     void evaluate(double dt)

@@ -1,0 +1,108 @@
+// problems/pd_run_checkpoint.hpp -- checkpoints of pd_run (problems/pd_run.cpp): --checkpoint-every N
+// writes <out>/checkpoint.pdstate every N steps (core/state_archive.hpp: atomically, the previous one
+// stays until the new one is complete); SIGINT or SIGTERM stops the run after the step in progress,
+// writes a final checkpoint and closes the CSV files; --restart FILE continues the run of FILE so
+// that it ends bit for bit as the uninterrupted run (energy.csv and heat.csv include the rows written
+// before the checkpoint; state and VTU files of earlier steps stay in the checkpoint's folder).
+// A checkpoint holds the integrator's fields, the intact bonds, the damage rule's state, the heat
+// field, the rows of energy.csv and heat.csv, the VTU series, the step, and a fingerprint of the
+// physics (every option but those a restart may change, below, and a checksum of the point cloud).
+// CVODE's internal history (order, step sizes, Nordsieck array) is not saved: with
+// --thermal-integrator cvode there are no checkpoints.
+#pragma once
+#include "pd/core/state_archive.hpp"
+#include "pd/io/options.hpp"
+#include "pd/io/point_cloud.hpp"
+
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+
+namespace pd_run {
+
+// The signal that asked the run to stop (SIGINT, SIGTERM); 0 while none did.
+inline volatile std::sig_atomic_t stop_signal = 0;
+inline void on_stop_signal(int sig) { stop_signal = sig; }
+inline void catch_stop_signals()
+{
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+}
+
+// Options a restart may change: where and how often output goes, and how long the run is.
+inline bool restart_may_change(const std::string& name)
+{
+    for (const char* o : {"restart", "checkpoint-every", "out", "threads", "steps", "thermal-steps", "output-steps"})
+        if (name == o) return true;
+    return false;
+}
+
+// The physics of a run as text: one "name = value" line per option a restart may not change, and
+// the point cloud's size and checksum (FNV-1a of its columns' bytes).
+inline std::string physics_fingerprint(const pd::io::Options& opt, const pd::io::PointCloud& pc)
+{
+    std::ostringstream text, out;
+    opt.echo(text);
+    std::istringstream echo(text.str());
+    for (std::string line; std::getline(echo, line);) {
+        const std::size_t a = line.find_first_not_of(' '), b = line.find(" = ");
+        if (a == std::string::npos || b == std::string::npos || !restart_may_change(line.substr(a, b - a))) out << line << '\n';
+    }
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&](const void* p, std::size_t n) {
+        for (std::size_t q = 0; q < n; ++q) h = (h ^ static_cast<const unsigned char*>(p)[q]) * 1099511628211ull;
+    };
+    auto mix_all = [&](const auto& v) { mix(v.data(), v.size() * sizeof v[0]); };
+    for (int d = 0; d < 3; ++d) mix_all(pc.x[d]), mix_all(pc.u[d]), mix_all(pc.v[d]);
+    mix_all(pc.volume), mix_all(pc.fixed), mix_all(pc.no_fail), mix_all(pc.T0), mix_all(pc.T_fixed);
+    char cloud[96];
+    std::snprintf(cloud, sizeof cloud, "  point cloud = %zu points, checksum %016llx\n", pc.size(), static_cast<unsigned long long>(h));
+    return out.str() + cloud;
+}
+
+// The first line in which two fingerprints differ, for the message of a refused restart.
+inline std::string first_difference(const std::string& saved, const std::string& now)
+{
+    std::istringstream a(saved), b(now);
+    std::string la, lb;
+    while (true) {
+        const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
+        if (!ga && !gb) return "";
+        if (!ga || !gb || la != lb) return "'" + (ga ? la.substr(la.find_first_not_of(' ')) : "-") + "' in the checkpoint, '" +
+                                          (gb ? lb.substr(lb.find_first_not_of(' ')) : "-") + "' in this run";
+    }
+}
+
+// Whether a log row or snapshot of step n belongs to a run whose last step is `last`: on the cadence
+// `every`, or the last step. A restart to more steps drops the rows its checkpoint's run wrote only
+// because that run ended there, so that its files are those of the uninterrupted run.
+inline bool on_cadence(long n, long every, long last) { return n % every == 0 || n == last; }
+
+struct Checkpoints {
+    long every = 0;                             // steps between checkpoints (0: only on a stop signal)
+    bool possible = true;                       // false with CVODE (its history is not saved)
+    std::filesystem::path file;                 // where this run writes them: <out>/checkpoint.pdstate
+    std::string fingerprint;                    // physics_fingerprint of this run
+    std::shared_ptr<pd::StateArchive> restart;  // the checkpoint this run continues; null: a new run
+    long first = 0;                             // the step the run starts from (the checkpoint's)
+
+    // Writes the checkpoint of step n; state(ar) adds the run's parts.
+    template <class State>
+    void write(long n, State&& state) const
+    {
+        pd::StateArchive ar;
+        std::string text = fingerprint;
+        ar("pd_run.physics", text);
+        long step = n;
+        ar("pd_run.step", step);
+        state(ar);
+        ar.write(file);
+    }
+};
+
+}  // namespace pd_run
