@@ -43,8 +43,9 @@ NeighborLists neighbor_lists(const Field<D>& x, double cell, Accept&& accept)
     for (std::size_t i = 0; i < n; ++i)
         for (int d = 0; d < D; ++d) {
             const double c = std::floor((x.c[d][i] - lo[d]) / cell);
-            if (!(c < 4e18))  // NaN too: an unstable run, or a cloud spread over more cells than an index holds
-                throw std::runtime_error("neighbour search: point " + std::to_string(i) + " has a non-finite coordinate or lies too far away");
+            if (!(c < 4e18))  // NaN too, or a cloud spread over more cells than an index holds: an input error
+                throw std::invalid_argument("neighbour search: point " + std::to_string(i) +
+                                            " (0-based) has a non-finite coordinate or lies more than 4e18 horizons from the others");
             coord[i][d] = static_cast<std::int64_t>(c);
         }
     auto before = [](const Coord& a, const Coord& b) {

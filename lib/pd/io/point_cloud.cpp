@@ -2,9 +2,11 @@
 #include "pd/io/point_cloud.hpp"
 
 #include "pd/io/csv.hpp"
+#include "pd/io/options.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <set>
@@ -20,11 +22,28 @@ const std::array<const char*, 3> v_names{"vx", "vy", "vz"};
 const std::vector<std::string> allowed_columns{"x", "y", "z", "volume", "block", "vx", "vy", "vz",
                                                "ux", "uy", "uz", "fixed", "no_fail", "T0", "T_fixed"};
 
+// A field as quoted in a message: control bytes as \xHH, cut after 40 characters.
+std::string shown(const std::string& text)
+{
+    std::string s;
+    for (std::size_t q = 0; q < text.size() && q < 40; ++q) {
+        const unsigned char c = static_cast<unsigned char>(text[q]);
+        if (c < 0x20 || c == 0x7f) {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", c);
+            s += hex;
+        } else {
+            s += text[q];
+        }
+    }
+    return text.size() > 40 ? s + "..." : s;
+}
+
 [[noreturn]] void fail_at(const std::filesystem::path& p, long line, const std::string& column, const std::string& what)
 {
     std::string msg = p.string();
     if (line > 0) msg += ":" + std::to_string(line);
-    if (!column.empty()) msg += ": column '" + column + "'";
+    if (!column.empty()) msg += ": column '" + shown(column) + "'";
     throw PointCloudError(msg + ": " + what);
 }
 
@@ -78,8 +97,9 @@ PointCloud read_point_cloud(const std::filesystem::path& path, int dim)
         const std::size_t c = t.column(name);
         const std::string& text = t.rows[r].fields[c];
         double v = 0;
-        if (!parse_double(text, v)) fail_at(path, t.rows[r].line, name, "'" + text + "' is not a number");
-        if (!std::isfinite(v)) fail_at(path, t.rows[r].line, name, "'" + text + "' is not a finite number");
+        if (!parse_double(text, v)) fail_at(path, t.rows[r].line, name, "'" + shown(text) + "' is not a number");
+        if (!std::isfinite(v)) fail_at(path, t.rows[r].line, name, "'" + shown(text) + "' is not a finite number");
+        if (const std::string m = Options::magnitude_error(v); !m.empty()) fail_at(path, t.rows[r].line, name, shown(text) + " " + m);
         return v;
     };
     auto column_or_zero = [&](const std::string& name, std::vector<double>& out) {
