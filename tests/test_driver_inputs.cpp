@@ -148,13 +148,15 @@ TEST(DriverInputs, EveryDriverRejectsUnusableOutAndThreads)
 
 // Extreme but well-formed values (issue 18, findings 1 and 3) end with status 2 and one line, not a
 // signal or an uncaught exception: beyond the options' magnitude range the option is named; an
-// oversized lattice is refused before it is allocated (pd::require_memory names its size).
+// oversized lattice is refused before it is allocated (pd::require_memory names its size); a run
+// needing more time steps than --max-steps (default 1e8) is refused before it loops.
 TEST(DriverInputs, ExtremeValuesExitTwoWithOneLine)
 {
     const std::tuple<const char*, const char*, const char*> cases[] = {
         {"prism_conductivity_3d", "--m 1e308", "--m"},         {"hourglass_modes_3d", "--m 1e308", "--m"},
         {"correspondence_heat_1d", "--length 1e308", "--length"}, {"numerical_viscosity_3d", "--delta 1e100", "--delta"},
         {"grid_orientation_2d", "--m-list=1e308", "--m-list"},  {"bar_modes_1d", "--N 2147483647", "cells"},
+        {"wave_block_3d", "--t-end 1e-3 --max-steps 1000", "--max-steps"}, {"crack_branching_3d", "--t-end 1000", "--max-steps"},
     };
     for (const auto& [exe, args, name] : cases) {
         const Outcome o = run(exe, std::string("--quick ") + args);

@@ -60,6 +60,8 @@ TEST(PdRun, BadInputsExitTwoWithOneLine)
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) flat += std::to_string(i * 1e-3) + "," + std::to_string(j * 1e-3) + ",0,1e-9\n";
     const std::string flat_file = write_file("flat_run.csv", flat).string();
+    const std::string tiny_file = write_file("tiny_run.csv", "x,y,z,volume\n0,0,0,1e-9\n1e-3,0,0,5e-324\n").string();
+    const std::string far_file = write_file("far_run.csv", "x,y,z,volume\n0,0,0,1e-9\n1e-3,0,0,1e-9\n1e20,0,0,1e-9\n").string();
     struct Case { std::string args, expect; };
     const std::vector<Case> cases = {
         {in + " --E -1 --nu 0.25 --rho 7800", "--E"},
@@ -94,6 +96,8 @@ TEST(PdRun, BadInputsExitTwoWithOneLine)
         {"--input " + comma_file + " --delta 2e-3" + steel, "comma_run.csv:1: empty column name in the header (a trailing comma?)"},
         {"--input " + good + steel + " --delta 5e-4 --dt 1e-9", "--delta: no point has a bond within delta = 5e-04 m"},
         {"--input " + flat_file + steel + " --delta 1.5e-3 --model correspondence", "every shape tensor is singular"},
+        {"--input " + tiny_file + steel + " --delta 2e-3", "tiny_run.csv:3: column 'volume': 5e-324 must be 0 or of magnitude 1e-30 to 1e30"},
+        {"--input " + far_file + steel + " --delta 2e-3", "neighbour search: point 2 (0-based)"},
     };
     for (std::size_t k = 0; k < cases.size(); ++k) {
         const Result r = pd_run("bad" + std::to_string(k), cases[k].args);

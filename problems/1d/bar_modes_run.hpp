@@ -75,6 +75,7 @@ Run run_pd(const Bar& b, const std::string& model, int N, int m, double dt_scale
     r.dt_crit = pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), b.rho), c).dt;
     const double dt_max = dt_scale * r.dt_crit;  // [s]
     const long k = std::max(1L, static_cast<long>(1.0 / (b.f1 * b.samples * dt_max)));  // steps per sample
+    pd::require_steps(std::ceil(t_end / dt_max), "--t-end / dt");
     const long n_out = static_cast<long>(std::ceil(t_end / (k * dt_max)));
     r.dt = guard ? dt_max : t_end / (k * n_out);  // stability runs keep dt = factor * dt_SA exactly
     r.nodes = static_cast<long>(body.size()), r.bonds = static_cast<long>(bonds.size()), r.x_tip = body.x.c[0].back();

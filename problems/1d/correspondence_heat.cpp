@@ -45,17 +45,20 @@ int run_case(int argc, char** argv)
     opt.add("area", 1e-4, "cross-section", "m^2");
     opt.add("dt", 10, "implicit Euler step", "s");
     opt.add("t-end", 500, "final time", "s");
-    opt.add_int("N", 500, "cells along the bar");
+    opt.add_int("N", 500, "cells along the bar (--quick: 100)");
     opt.add_int("m", 3, "horizon ratio delta/dx");
     opt.add_string("chg", "0,0.01,0.1,1,100,10000", "hourglass coefficients C_hg (comma list)");
     opt.add_string("bc", "outside", "held cells outside the bar, or its first/last m cells", {"outside", "inside"});
     for (const char* o : {"k", "rho", "c", "length", "area", "dt", "t-end"}) opt.require_positive(o);
     opt.require_at_least("N", 8);
     opt.require_at_least("m", 1);
-    run.start(argc, argv);
+    run.parse(argc, argv);
+    run.quick_default("N", 100);
+    run.start();
     const std::vector<double> chg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
-    const int N = run.quick() ? std::min(opt.get_int("N"), 100) : opt.get_int("N"), m = opt.get_int("m");
+    const int N = opt.get_int("N"), m = opt.get_int("m");
     const double l = opt.get("length"), A = opt.get("area"), dx = l / N, dt = opt.get("dt");
+    pd::require_steps(std::round(opt.get("t-end") / dt), "--t-end / --dt");
     const int steps = int(std::lround(opt.get("t-end") / dt));
 
     // 2. Discretisation: N cells; held: m cells outside each end, or the first/last m cells.

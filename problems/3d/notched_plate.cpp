@@ -88,6 +88,7 @@ Result run_plate(const Setup& s, const std::string& name, const std::string& dam
     ex.start();
     pd::io::CsvWriter csv(out / ("history_" + name + ".csv"), {"t_s", "stress_Pa", "broken_bonds", "tip_x_m"});
     const double dt = s.dt / dt_divisor;
+    pd::require_steps(std::round(s.t_end / dt), "--t-end / dt");
     const long steps = std::lround(s.t_end / dt);
     try {
         for (long n = 1; n <= steps; ++n) {

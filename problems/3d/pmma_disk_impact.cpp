@@ -69,6 +69,7 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
     pd::io::CsvWriter h(out / "history.csv", {"t_s", "z_tip_m", "v_tip_m_s", "F_contact_N", "F_support_N", "E_tip_kinetic_J",
                                               "E_body_kinetic_J", "E_elastic_J", "E_contact_J", "E_damage_J", "broken_bonds"});
     Outcome o;
+    pd::require_steps(std::ceil(s.t_end / s.dt), "--t-end / dt");
     const long steps = static_cast<long>(std::ceil(s.t_end / s.dt));
     const long every = std::max(1L, steps / 500);  // ~500 samples
     pd::WindowMean F_support(s.window), F_tip(s.window);  // window means of the support and tip forces [N]

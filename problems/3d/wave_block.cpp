@@ -144,6 +144,7 @@ static int run_case(int argc, char** argv)
     else if (t_end * speed_margin * cP > travel_max) std::printf("warning: --t-end lets the pulses reach the free ends\n");
     const double t_fit = 3 * w / cP;  // halves separated (overlap energy < e^-18): fit from here
     if (!(t_end > 1.5 * t_fit)) opt.fail("option --t-end/--length too short: the half pulses need to travel > 4.5 w");
+    pd::require_steps(3 * std::ceil(t_end / (dt_factor * dt_crit)), "--t-end / dt (at dt and dt/2)");
     const long steps = static_cast<long>(std::ceil(t_end / (dt_factor * dt_crit)));
     const double dt = t_end / steps;
     std::printf("nodes %zu (interior %zu, ghosts %zu), bonds %zu, delta %.4g m, dt %.4g s (%.3g x critical), %ld steps\n",

@@ -6,6 +6,7 @@
 //   NonFiniteResult: a headline result of a finished run is nan or inf (exit status 3 too: the run's
 //   numbers are not to be trusted, whether or not --check was given).
 //   require_memory: a scene too large for this machine is refused before it is allocated (status 2).
+//   require_steps: a run whose step count exceeds the step limit is refused before it loops (status 2).
 #pragma once
 #include <unistd.h>
 
@@ -47,6 +48,27 @@ inline void require_memory(double bytes, const std::string& what)
         char text[96];
         std::snprintf(text, sizeof text, " needs about %.3g GiB, more than the %.3g GiB of this machine", bytes / 1073741824.0,
                       have / 1073741824.0);
+        throw std::invalid_argument(what + text);
+    }
+}
+
+// The most time steps a run may take (drivers: --max-steps, set by io::Case; 0 = no limit). A run
+// of 10^8 steps takes hours even on a small scene: beyond it an input (a huge end time, a tiny
+// step) is far more likely a slip than a wish.
+inline long& step_limit()
+{
+    static long limit = 100000000;
+    return limit;
+}
+
+// Throws std::invalid_argument when a run needs more than step_limit() steps; `what` names the
+// options that set the count (e.g. "--t-end / dt").
+inline void require_steps(double steps, const std::string& what)
+{
+    if (step_limit() > 0 && !(steps <= static_cast<double>(step_limit()))) {
+        char text[160];
+        std::snprintf(text, sizeof text, " asks for %.3g time steps, more than the limit %ld (raise it with --max-steps, 0 = none)", steps,
+                      step_limit());
         throw std::invalid_argument(what + text);
     }
 }

@@ -87,6 +87,7 @@ public:
         } catch (const std::exception& e) {
             opt.fail("option --out: " + std::string(e.what()));
         }
+        step_limit() = opt.get_int("max-steps");
         const int threads = opt.get_int("threads");
         if (processors() > 0 && threads > processors())
             std::fprintf(stderr, "%s: warning: --threads %d is more than the %d processors (oversubscription slows the run)\n",

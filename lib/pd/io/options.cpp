@@ -351,6 +351,8 @@ void add_standard(Options& opt, const std::string& default_out, const std::strin
     opt.add_string("out", default_out, out_help);
     opt.add_int("threads", 0, "OpenMP threads (0 = OpenMP default)");
     opt.require_at_least("threads", 0);
+    opt.add_int("max-steps", 100000000, "refuse a run needing more time steps than this (0 = no limit)");
+    opt.require_at_least("max-steps", 0);
 }
 
 }  // namespace pd::io

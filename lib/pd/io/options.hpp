@@ -130,7 +130,8 @@ private:
 
 // The options every driver accepts (DESIGN.md, "Problem drivers"):
 //   --quick (flag: coarse, seconds), --check (flag: exit non-zero when the tolerance is missed),
-//   --out DIR (string, default default_out), --threads N (int, 0 = OpenMP default; must be >= 0).
+//   --out DIR (string, default default_out), --threads N (int, 0 = OpenMP default; must be >= 0),
+//   --max-steps N (int, default 1e8, 0 = none: the step limit of core/errors.hpp, require_steps).
 // out_help is the help text of --out; a driver that writes more than CSV files (e.g. VTU) says so there.
 void add_standard(Options& opt, const std::string& default_out,
                   const std::string& out_help = "output folder (CSV files and params.csv)");

@@ -73,6 +73,7 @@ ReachResult time_to_reach(Conduction<Model>& heat, const Model& model, const Bon
         }
     } else {
         if (!(dt > 0)) throw std::invalid_argument("time_to_reach: dt must be positive");
+        require_steps(std::ceil(t_max / dt), "the time to reach the target (at most " + std::to_string(t_max) + " s) / dt");
         while (t < t_max) {
             scheme == HeatIntegrator::implicit_euler ? heat.implicit_euler(theta, dt) : heat.explicit_euler(theta, dt);
             t += dt;

@@ -88,6 +88,7 @@ RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, const Bo
     if (!bonds.has_damage()) bonds.enable_damage();
     PMB model = make_pmb(mat, bonds, info);
     const double dt_bound = std::min(dt_max, safety * info.dt_crit);
+    pd::require_steps(std::ceil(t_end / dt_bound * (1 - 1e-12)), "--t-end / dt");
     info.steps = static_cast<long>(std::ceil(t_end / dt_bound * (1 - 1e-12)));  // 1e-12: t_end a multiple of dt_bound
     info.dt = t_end / info.steps;
     CriticalStretch damage{.s0 = info.s0, .s0_bond = {}, .no_fail = {}};
