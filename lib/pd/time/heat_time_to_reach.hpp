@@ -12,6 +12,7 @@
 #include "pd/core/errors.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -73,7 +74,9 @@ ReachResult time_to_reach(Conduction<Model>& heat, const Model& model, const Bon
         }
     } else {
         if (!(dt > 0)) throw std::invalid_argument("time_to_reach: dt must be positive");
-        require_steps(std::ceil(t_max / dt), "the time to reach the target (at most " + std::to_string(t_max) + " s) / dt");
+        char what[128];
+        std::snprintf(what, sizeof what, "the heat run to its target (up to t = %.3g s at dt = %.3g s)", t_max, dt);
+        require_steps(std::ceil(t_max / dt), what);
         while (t < t_max) {
             scheme == HeatIntegrator::implicit_euler ? heat.implicit_euler(theta, dt) : heat.explicit_euler(theta, dt);
             t += dt;
