@@ -210,7 +210,8 @@ int main(int argc, char** argv)
     }
     check_cloud(pc, opt, mechanics, heat.heat != "none");
     cfg.checkpoints.fingerprint = physics_fingerprint(opt, pc);
-    bool same_folder = false;  // a restart into the folder of its checkpoint continues that run's files
+    cfg.heat.resumed = !restart.empty();
+    bool& same_folder = cfg.checkpoints.same_folder;  // a restart into its checkpoint's folder continues that run's files
     if (!restart.empty()) {
         try {
             cfg.checkpoints.restart = std::make_shared<pd::StateArchive>(pd::StateArchive::read(restart));
@@ -222,9 +223,12 @@ int main(int argc, char** argv)
         } catch (const std::invalid_argument& e) {
             fail("option --restart: " + std::string(e.what()));
         }
-        if (cfg.checkpoints.first > cfg.steps)
-            fail("option --" + std::string(mechanics ? "steps" : "thermal-steps") + ": the checkpoint is at step " +
-                 std::to_string(cfg.checkpoints.first) + ", beyond " + std::to_string(cfg.steps));
+        const std::string steps_option = mechanics ? "--steps" : "--thermal-steps";
+        if (cfg.checkpoints.first < 0) fail("option --restart: the checkpoint's step is negative");
+        if (cfg.checkpoints.first >= cfg.steps)
+            fail("option " + steps_option + ": the checkpoint is at step " + std::to_string(cfg.checkpoints.first) +
+                 (cfg.checkpoints.first > cfg.steps ? ", beyond " : ", the end of the run at ") + std::to_string(cfg.steps) +
+                 ": nothing to continue");
         std::error_code ec;
         same_folder = std::filesystem::equivalent(std::filesystem::path(restart).parent_path().empty() ? "." : std::filesystem::path(restart).parent_path(),
                                                   cfg.out, ec);

@@ -14,6 +14,7 @@
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
 
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -21,13 +22,23 @@
 #include <filesystem>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace pd_run {
 
 // The signal that asked the run to stop (SIGINT, SIGTERM); 0 while none did.
 inline volatile std::sig_atomic_t stop_signal = 0;
-inline void on_stop_signal(int sig) { stop_signal = sig; }
+// The first signal asks the run to stop after its step; a second one ends it at once (the default
+// action), for a step or a set-up that takes too long. Both calls are async-signal-safe.
+inline void on_stop_signal(int sig)
+{
+    if (stop_signal != 0) {
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+    }
+    stop_signal = sig;
+}
 inline void catch_stop_signals()
 {
     std::signal(SIGINT, on_stop_signal);
@@ -83,6 +94,13 @@ inline std::string first_difference(const std::string& saved, const std::string&
 // because that run ended there, so that its files are those of the uninterrupted run.
 inline bool on_cadence(long n, long every, long last) { return n % every == 0 || n == last; }
 
+// A step number stored as a double in a checkpoint (log rows, snapshots), checked before the cast.
+inline long step_number(double v)
+{
+    if (!(v >= 0 && v < 9e18 && v == std::floor(v))) throw std::invalid_argument("checkpoint: a stored step is not a step number");
+    return static_cast<long>(v);
+}
+
 struct Checkpoints {
     long every = 0;                             // steps between checkpoints (0: only on a stop signal)
     bool possible = true;                       // false with CVODE (its history is not saved)
@@ -90,6 +108,7 @@ struct Checkpoints {
     std::string fingerprint;                    // physics_fingerprint of this run
     std::shared_ptr<pd::StateArchive> restart;  // the checkpoint this run continues; null: a new run
     long first = 0;                             // the step the run starts from (the checkpoint's)
+    bool same_folder = false;                   // restarted into the checkpoint's folder (its files are kept)
 
     // Writes the checkpoint of step n; state(ar) adds the run's parts.
     template <class State>

@@ -79,6 +79,7 @@ struct HeatSettings {
     double k = 0, rho_cv = 0, T0 = 0, dt = 0, hourglass = 0, measure = 1;  // [W/(m K)], [J/(m^3 K)], [K], [s], [-], [m^(3-D)]
     pd::ThermalCorrection correction = pd::ThermalCorrection::none;
     long every = 1;  // heat.csv row every k thermal steps
+    bool resumed = false;  // restarted from a checkpoint: heat.csv is written by state(), not by init
 };
 
 // The temperature field and its integrator, whatever the heat model (type-erased for the driver).
@@ -121,7 +122,7 @@ public:
         if (ar.saving()) return;
         open_log();
         for (std::size_t q = 0; q + 5 <= rows.size(); q += 5)
-            if (on_cadence(long(rows[q]), every_, last_step)) log_row({rows.begin() + q, rows.begin() + q + 5});
+            if (on_cadence(step_number(rows[q]), every_, last_step)) log_row({rows.begin() + q, rows.begin() + q + 5});
     }
 
 protected:
@@ -137,6 +138,7 @@ protected:
         lo_ = *mn - guard_widening * width - slack;
         hi_ = *mx + guard_widening * width + slack;
         log_path_ = out / "heat.csv";
+        if (s.resumed) return;  // the complete heat.csv of the first run stays until state() rewrites it
         open_log();
         record();  // thermal step 0
     }
@@ -151,7 +153,7 @@ private:
 
     void open_log()
     {
-        log_.reset();  // a restart: the first heat.csv is complete before it is written again
+        log_.reset();
         rows_.clear();
         log_ = std::make_unique<pd::io::CsvWriter>(log_path_, std::vector<std::string>{"thermal_step", "t_s", "heat_J", "T_min", "T_max"});
     }

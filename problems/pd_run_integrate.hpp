@@ -53,7 +53,8 @@ struct Run {
 // advances to step n, output(n) writes what step n asks for, state(ar) visits the run's checkpoint
 // state (pd_run_checkpoint.hpp), written every cp.every steps and when a stop signal arrived.
 // Returns the exit status: 3 when pd::Unstable stops the run (the files written so far stay),
-// 128 + the signal's number after a stop signal (the checkpoint and the CSV files written).
+// 128 + the signal's number after a stop signal (the checkpoint and the CSV files written); 3 also
+// when a solver (CVODE) cannot continue.
 template <class Step, class Output, class State>
 int step_loop(const Checkpoints& cp, long steps, Step&& step, Output&& output, State&& state)
 {
@@ -79,6 +80,10 @@ int step_loop(const Checkpoints& cp, long steps, Step&& step, Output&& output, S
         progress.finish();
         std::cerr << program << ": " << e.what() << std::endl;
         return 3;
+    } catch (const pd::SolverFailure& e) {  // CVODE could not continue the heat run
+        progress.finish();
+        std::cerr << program << ": " << e.what() << std::endl;
+        return 3;
     }
     progress.finish();
     return 0;
@@ -90,7 +95,7 @@ inline bool vtu_step(const Run& cfg, long n) { return cfg.vtu_every > 0 && (n % 
 // The VTU snapshots and their .pvd series; a restart re-lists the snapshots written before it.
 class VtuSeries {
 public:
-    explicit VtuSeries(const Run& cfg) : out_(cfg.out), every_(cfg.vtu_every), last_(cfg.steps)
+    explicit VtuSeries(const Run& cfg) : out_(cfg.out), every_(cfg.vtu_every), last_(cfg.steps), relist_(cfg.checkpoints.same_folder)
     {
         if (cfg.vtu_every > 0) pvd_ = std::make_unique<pd::io::PvdWriter>(cfg.out / "state.pvd");
     }
@@ -104,9 +109,9 @@ public:
     {
         ar("pd_run.vtu_steps", steps_), ar("pd_run.vtu_times", times_);
         if (ar.saving() || !pvd_) return;
-        std::vector<double> steps, times;
-        for (std::size_t q = 0; q < steps_.size(); ++q)
-            if (on_cadence(long(steps_[q]), every_, last_)) {
+        std::vector<double> steps, times;  // the earlier snapshots are listed where their files are
+        for (std::size_t q = 0; q < steps_.size() && relist_; ++q)
+            if (on_cadence(step_number(steps_[q]), every_, last_)) {
                 pvd_->add(times_[q], pd::io::step_file(out_, long(steps_[q]), "vtu"));
                 steps.push_back(steps_[q]), times.push_back(times_[q]);
             }
@@ -116,6 +121,7 @@ public:
 private:
     std::filesystem::path out_;
     long every_, last_;
+    bool relist_;
     std::unique_ptr<pd::io::PvdWriter> pvd_;
     std::vector<double> steps_, times_;  // of the snapshots written (steps as numbers)
 };
@@ -194,7 +200,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
         ar("pd_run.energy_rows", rows);
         if (!ar.saving())
             for (std::size_t q = 0; q + 6 <= rows.size(); q += 6)
-                if (on_cadence(long(rows[q]), cfg.energy_every, cfg.steps)) energy_row({rows.begin() + q, rows.begin() + q + 6});
+                if (on_cadence(step_number(rows[q]), cfg.energy_every, cfg.steps)) energy_row({rows.begin() + q, rows.begin() + q + 6});
         vtu.state(ar);
         if (heat) heat->state(ar, thermal_total);
     };

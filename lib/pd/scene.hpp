@@ -113,9 +113,9 @@ public:
         if constexpr (HasState<Model>) {
             model.state(ar);  // after recompute: the model's own state is the newer one
         } else {
-            if constexpr (HistoryModel<Model, D>) throw std::logic_error("checkpoint: this history model has no state(ar) yet");
+            if constexpr (HistoryModel<Model, D>) throw std::logic_error("checkpoint: this history model has no state(ar): not checkpointable");
             if constexpr (D == 3 && RateFormModel<Model>)
-                if (model.rate_form()) throw std::logic_error("checkpoint: the rate-form stress has no state(ar) yet");
+                if (model.rate_form()) throw std::logic_error("checkpoint: a rate-form (Flanagan-Taylor) stress is not checkpointable");
             if constexpr (!HistoryModel<Model, D> && Model::has_point_pass)
                 if (!ar.saving()) model.point_pass(bonds, y_);
         }

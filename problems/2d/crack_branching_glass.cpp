@@ -180,7 +180,7 @@ static int run_case(int argc, char** argv)
     const double theta = 0.5 * (r.theta_up - r.theta_low);  // mean half-angle of the two branches [deg]
     const double cR = pd::crack::rayleigh_speed(E, mat.nu(), rho);  // Viktorov (crack_run.hpp)
     using pd::io::relative_error;
-    run.summary({
+    run.summary_observed({
         {"t_init_s", r.t_init, p.t_init, relative_error(r.t_init, p.t_init), "s"},
         {"t_branch_s", r.t_branch, p.t_branch, relative_error(r.t_branch, p.t_branch), "s"},
         {"x_branch_m", r.x_branch, p.x_branch, relative_error(r.x_branch, p.x_branch), "m"},

@@ -153,7 +153,7 @@ static int run_case(int argc, char** argv)
             std::snprintf(name, sizeof name, "path_rms_grid%g_m%g_m", a_deg, m);
             run.summary({name, dev.rms, nan, nan, "m"});
             std::snprintf(name, sizeof name, "path_angle_grid%g_m%g_deg", a_deg, m);
-            run.summary({name, ang, nan, nan, "deg"});
+            run.summary_observed({{name, ang, nan, nan, "deg"}});
             run.check(!std::isnan(ang), std::string("crack grows on the ") + std::to_string(static_cast<int>(a_deg)) + " deg grid, m = " +
                                             std::to_string(m).substr(0, 4));
             if (a_deg == 0) run.check(horizontal, "0 deg grid: horizontal path (spec/002 Fig. 5.1b)");

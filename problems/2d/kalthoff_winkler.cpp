@@ -163,7 +163,7 @@ static int run_case(int argc, char** argv)
     const Result& r = results.front();
     using pd::io::relative_error;
     const double nan = pd::crack::nan;
-    run.summary({
+    run.summary_observed({
         {"t_init_s", r.t_init, t_pub, relative_error(r.t_init, t_pub), "s"},
         {"crack_angle_deg", r.angle_up, angle_pub, relative_error(r.angle_up, angle_pub), "deg"},
         {"crack_angle_vs_experiment_deg", r.angle_up, angle_exp, relative_error(r.angle_up, angle_exp), "deg"},

@@ -226,8 +226,8 @@ int run_case(int argc, char** argv)
                  static_cast<double>(r.broken_final), r.unstable ? 1.0 : 0.0, r.wall});
         for (const auto& p : pub)
             if (r.name == p.name && !std::isnan(p.start)) {
-                run.summary({r.name + "_t_start_s", r.t_start, p.start * 1e-6, pd::io::relative_error(r.t_start, p.start * 1e-6), "s"});
-                run.summary({r.name + "_t_end_s", r.t_end, p.end * 1e-6, pd::io::relative_error(r.t_end, p.end * 1e-6), "s"});
+                run.summary_observed({{r.name + "_t_start_s", r.t_start, p.start * 1e-6, pd::io::relative_error(r.t_start, p.start * 1e-6), "s"},
+                                      {r.name + "_t_end_s", r.t_end, p.end * 1e-6, pd::io::relative_error(r.t_end, p.end * 1e-6), "s"}});
             }
         run.summary({r.name + "_wall_s", r.wall, NAN, NAN, "s"});
         run.check(!r.unstable, r.name + ": run stays stable");

@@ -33,6 +33,7 @@
 // round-off when no point is constrained.
 #pragma once
 #include "pd/core/bonds.hpp"
+#include "pd/core/errors.hpp"
 #include "pd/core/field.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/core/neighbors.hpp"
@@ -127,6 +128,10 @@ private:
     void rebuild(const Field<D>& y)
     {
         ++rebuilds;
+        for (int d = 0; d < D; ++d)  // a blown-up run reaches the search before the integrator's finite check
+            for (std::size_t i = 0; i < y.size(); ++i)
+                if (!std::isfinite(y.c[d][i]))
+                    throw Unstable("unstable: non-finite position of node " + std::to_string(i) + " in the contact search", 0, int(i));
         y_build_ = y;
         const double h = rc + skin;
         NeighborLists near = neighbor_lists(y, h, [&](int i, int j) { return norm(y[j] - y[i]) < h; });

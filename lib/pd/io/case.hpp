@@ -113,6 +113,14 @@ public:
     // A headline result for summary.csv (written by finish, in the order given).
     void summary(SummaryRow row) { rows_.push_back(std::move(row)); }
     void summary(const std::vector<SummaryRow>& rows) { rows_.insert(rows_.end(), rows.begin(), rows.end()); }
+    // Rows of features a run may not show (a crack that does not start, a branch or a second peak
+    // that does not form): there a nan value means "not observed" (a not_measured row), which the
+    // driver's --check list reports; any other row must be finite (finish).
+    void summary_observed(std::vector<SummaryRow> rows)
+    {
+        for (SummaryRow& r : rows) r.measured = r.measured && !std::isnan(r.value);
+        summary(rows);
+    }
     const std::vector<SummaryRow>& summary_rows() const { return rows_; }
     // The summary as the drivers' table on stdout.
     void print_summary(int name_width, int digits = 6) const { pd::io::print_summary(rows_, name_width, digits); }
