@@ -2,13 +2,16 @@
 // saved after k steps to a file and resumed by a newly built integrator ends bit for bit where the
 // uninterrupted run ends (displacements, velocities, intact bonds, energies), for bond breaking by
 // critical stretch and by critical micropotential, for a model rebuilt from its bonds (LPS) and for
-// a model with history (plastic LPS). A damaged or foreign checkpoint is refused with one line.
+// models with history (plastic LPS and PALS, viscoelastic LPS). A damaged or foreign checkpoint is
+// refused with one line.
 #include "pd/core/lattice.hpp"
 #include "pd/core/state_archive.hpp"
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/plastic_lps.hpp"
+#include "pd/models/plastic_pals.hpp"
+#include "pd/models/viscoelastic_lps.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/verlet.hpp"
 
@@ -129,6 +132,8 @@ TEST(Checkpoint, PlasticRunRestartsBitForBit)
     auto make = [&](const Body<3>&, const Bonds& b) { return PlasticLPS({.material = steel, .dim = 3}, b, soft); };
     CriticalStretch* none = nullptr;
     expect_restart_identical(make, none, 20.0, "plastic LPS");
+    auto make_pals = [&](const Body<3>& body, const Bonds& b) { return PlasticPALS({.material = steel}, body, b, soft); };
+    expect_restart_identical(make_pals, none, 20.0, "plastic PALS");
     // The history is what makes it a restart: plastic flow happened before the checkpoint.
     const Body<3> body = bar();
     Bonds b = build_bonds(body, 3.015 * dx);
@@ -138,6 +143,17 @@ TEST(Checkpoint, PlasticRunRestartsBitForBit)
     ex.start();
     for (int n = 0; n < 6; ++n) ex.step(dt);  // the steps before the checkpoint
     EXPECT_GT(*std::max_element(model.pts.ep_c.begin(), model.pts.ep_c.end()), 0.0);
+}
+
+// The Maxwell branch relaxes over tau_b = 1 us, within the 4 us of the run.
+TEST(Checkpoint, ViscoelasticRunRestartsBitForBit)
+{
+    auto make = [](const Body<3>&, const Bonds& b) {
+        return ViscoelasticLPS({.lps = {.material = steel, .dim = 3}, .gamma_b = 1, .tau_b = 1e-6}, b);
+    };
+    CriticalStretch stretch;
+    stretch.s0 = 5e-4;
+    expect_restart_identical(make, &stretch, 20.0, "viscoelastic LPS, critical stretch");
 }
 
 TEST(Checkpoint, ForeignOrDamagedFilesAreRefusedWithOneLine)

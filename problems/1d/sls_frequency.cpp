@@ -43,6 +43,7 @@ Response measure(const pd::laws::Maxwell& law, double omega, int N, int periods,
     const int transient = std::max(2, static_cast<int>(std::ceil(20 * tau / T)));  // periods, e^{-20} of the start
     std::vector<double> h(law.branches.size(), 0.0);
     double x_n = 0, a = 0, b = 0;
+    pd::require_steps((double(transient) + periods) * N, "--periods (+ the transient of 20 tau) x --steps-per-period");
     const long total = static_cast<long>(transient + periods) * N;
     for (long n = 1; n <= total; ++n) {
         const double phase = 2 * pi * static_cast<double>(n % N) / N;  // w t_n modulo 2 pi

@@ -109,6 +109,7 @@ static int run_case(int argc, char** argv)
     run.quick_default("repeats", 2);
     run.quick_default("block", 5);
     run.start();
+    pd::require_steps(5.0 * steps * repeats, "--steps x --repeats x 5 models");
 
     // 2. Discretisation: bar plus clamp zones ceil(2 delta/dx) cells long at both ends (outside).
     const double dx = H / n, delta = m * dx;

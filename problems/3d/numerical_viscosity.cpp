@@ -142,6 +142,7 @@ int run_case(int argc, char** argv)
         pd::ViscoelasticCorrespondence corr(cm, {vp.gamma_b, vp.tau_b}, body.x);
         const double T = 2 * pi / w, dt = T / N;
         const int transient = std::max(2, static_cast<int>(std::ceil(10 * vp.tau_b / T)));
+        pd::require_steps((double(transient) + periods) * N, "--periods (+ the transient) x --steps-per-period");
         std::complex<double> pl = 0, pc = 0;
         pd::Field<3> y, f;
         for (long s = 1; s <= static_cast<long>(transient + periods) * N; ++s) {

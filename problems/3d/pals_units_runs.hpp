@@ -74,6 +74,7 @@ Outcome run_explicit(Scene& s, Model& model, double sf, double c_pmb)
     pd::grip_bar_ends(sim.boundary, s.bar.left, s.bar.right, pd::TimeFunction::ramp(s.U, s.t_ramp), pd::Grips::clamped);
     sim.start();
     o.dt_crit = pd::critical_step_silling_askari(s.bonds, sim.rho, c_pmb).dt;
+    pd::require_steps(std::ceil(s.t_ramp / (sf * o.dt_crit)), "--t-ramp / dt");
     o.steps = static_cast<long>(std::ceil(s.t_ramp / (sf * o.dt_crit)));
     o.dt = s.t_ramp / o.steps;
     const long window = std::max(o.steps / 4, 1L), guard_every = 1000;  // guard: one energy pass per 1000 steps

@@ -79,6 +79,7 @@ int run_case(int argc, char** argv)
     const double G = mat.G, gb = opt.get("gamma-b"), tau = opt.get("tau"), g0 = opt.get("gamma0");
     const int n = opt.get_int("n"), spt = opt.get_int("steps-per-tau");
     const double dx = opt.get("dx"), dt = tau / spt;
+    pd::require_steps(2 * (opt.get("hold-tau") + opt.get("ramp-tau")) * spt, "(--hold-tau + --ramp-tau) x --steps-per-tau, two runs");
     const long hold = std::lround(opt.get("hold-tau") * spt), ramp = std::max(1L, std::lround(opt.get("ramp-tau") * spt));
     const pd::io::Timer timer;
 

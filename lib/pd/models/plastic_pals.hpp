@@ -19,6 +19,7 @@
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/core/field.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/plastic_points.hpp"
@@ -51,6 +52,13 @@ struct PlasticPALS {
     {
         edp_c = edp;
         pts.commit();
+    }
+    // Its part of a checkpoint (core/state_archive.hpp): the plastic history and the last point pass.
+    void state(StateArchive& ar)
+    {
+        ar("pals.theta", pals.theta), ar("pals.p", pals.p);
+        ar("plastic_pals.edp_c", edp_c), ar("plastic_pals.edp", edp), ar("plastic_pals.t", t);
+        pts.state(ar);
     }
 
     // Trial state at y from the committed history (header).

@@ -21,6 +21,7 @@
 //   D_i = sum_k (alpha_b,i omega V_j / tau_b) int (e_d - e_db)^2 dt   (laws/maxwell.hpp, exact per step).
 #pragma once
 #include "pd/core/bonds.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/core/field.hpp"
 #include "pd/laws/maxwell.hpp"
 #include "pd/models/lps.hpp"
@@ -73,6 +74,13 @@ struct ViscoelasticLPS {
     {
         ed_c = ed_t;
         edb_c = edb_t;
+    }
+    // Its part of a checkpoint (core/state_archive.hpp): the history and the last point pass.
+    void state(StateArchive& ar)
+    {
+        ar("lps.theta", lps.theta), ar("lps.a_coef", lps.a_coef), ar("viscoelastic.dt", dt);
+        ar("viscoelastic.ed_c", ed_c), ar("viscoelastic.edb_c", edb_c), ar("viscoelastic.ed_t", ed_t), ar("viscoelastic.edb_t", edb_t);
+        ar("viscoelastic.tv", tv), ar("viscoelastic.dissipation", dissipation);
     }
 
     void recompute(const Bonds& b) { lps.recompute(b); }
