@@ -211,34 +211,13 @@ int main(int argc, char** argv)
     check_cloud(pc, opt, mechanics, heat.heat != "none");
     cfg.checkpoints.fingerprint = physics_fingerprint(opt, pc);
     cfg.heat.resumed = !restart.empty();
-    bool& same_folder = cfg.checkpoints.same_folder;  // a restart into its checkpoint's folder continues that run's files
-    if (!restart.empty()) {
-        try {
-            cfg.checkpoints.restart = std::make_shared<pd::StateArchive>(pd::StateArchive::read(restart));
-            std::string saved;
-            (*cfg.checkpoints.restart)("pd_run.physics", saved);
-            if (const std::string diff = first_difference(saved, cfg.checkpoints.fingerprint); !diff.empty())
-                fail("option --restart: the checkpoint is of another run: " + diff);
-            (*cfg.checkpoints.restart)("pd_run.step", cfg.checkpoints.first);
-        } catch (const std::invalid_argument& e) {
-            fail("option --restart: " + std::string(e.what()));
-        }
-        const std::string steps_option = mechanics ? "--steps" : "--thermal-steps";
-        if (cfg.checkpoints.first < 0) fail("option --restart: the checkpoint's step is negative");
-        if (cfg.checkpoints.first >= cfg.steps)
-            fail("option " + steps_option + ": the checkpoint is at step " + std::to_string(cfg.checkpoints.first) +
-                 (cfg.checkpoints.first > cfg.steps ? ", beyond " : ", the end of the run at ") + std::to_string(cfg.steps) +
-                 ": nothing to continue");
-        std::error_code ec;
-        same_folder = std::filesystem::equivalent(std::filesystem::path(restart).parent_path().empty() ? "." : std::filesystem::path(restart).parent_path(),
-                                                  cfg.out, ec);
-    }
+    if (!restart.empty()) cfg.checkpoints.load(restart, cfg.steps, mechanics ? "--steps" : "--thermal-steps", cfg.out, fail);
 
     std::cout << program << ": options\n";
     opt.echo(std::cout);
     try {
         std::filesystem::create_directories(cfg.out);
-        if (same_folder) pd::io::OutputManifest::resume(cfg.out);  // keeps the files of the run it continues
+        if (cfg.checkpoints.same_folder) pd::io::OutputManifest::resume(cfg.out);  // keeps the files of the run it continues
         else pd::io::OutputManifest::begin(cfg.out);               // the previous run's files in --out go first (csv.hpp)
         opt.save_csv(cfg.out / "params.csv");
     } catch (const std::exception& e) {

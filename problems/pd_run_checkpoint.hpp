@@ -24,6 +24,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace pd_run {
 
@@ -109,6 +110,29 @@ struct Checkpoints {
     std::shared_ptr<pd::StateArchive> restart;  // the checkpoint this run continues; null: a new run
     long first = 0;                             // the step the run starts from (the checkpoint's)
     bool same_folder = false;                   // restarted into the checkpoint's folder (its files are kept)
+
+    // Reads the checkpoint `path` that a run of `steps` steps (option steps_option) into `out`
+    // continues: its physics must be this run's, its step before `steps`; fail(message) otherwise.
+    template <class Fail>
+    void load(const std::filesystem::path& path, long steps, const std::string& steps_option, const std::filesystem::path& out, Fail fail)
+    {
+        try {
+            restart = std::make_shared<pd::StateArchive>(pd::StateArchive::read(path));
+            std::string saved;
+            (*restart)("pd_run.physics", saved);
+            if (const std::string diff = first_difference(saved, fingerprint); !diff.empty())
+                fail("option --restart: the checkpoint is of another run: " + diff);
+            (*restart)("pd_run.step", first);
+        } catch (const std::invalid_argument& e) {
+            fail("option --restart: " + std::string(e.what()));
+        }
+        if (first < 0) fail("option --restart: the checkpoint's step is negative");
+        if (first >= steps)
+            fail("option " + steps_option + ": the checkpoint is at step " + std::to_string(first) +
+                 (first > steps ? ", beyond " : ", the end of the run at ") + std::to_string(steps) + ": nothing to continue");
+        std::error_code ec;
+        same_folder = std::filesystem::equivalent(path.parent_path().empty() ? "." : path.parent_path(), out, ec);
+    }
 
     // Writes the checkpoint of step n; state(ar) adds the run's parts.
     template <class State>

@@ -21,21 +21,30 @@ void one_by_one(double value, Sparse& J)
     J.insert(0, 0) = value;
 }
 
+// Advances to t_out, which must throw E with a one-line message while stderr stays silent; returns it.
+template <class E>
+std::string one_line_failure(pd::CvodeBdf& solver, double t_out)
+{
+    std::string what = "(no exception)";
+    testing::internal::CaptureStderr();
+    try {
+        solver.advance(t_out);
+    } catch (const E& e) {
+        what = e.what();
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    EXPECT_NE(what, "(no exception)");
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    return what;
+}
+
 // y' = NaN: the error test fails at every step size, so CVODE cannot leave t = 0.
 TEST(CvodeFailures, NoStepFromTheInitialTimeIsAnInputErrorOfOneLine)
 {
     pd::CvodeBdf solver({1.0}, 0.0, [](double, const double*, double* ydot) { ydot[0] = std::nan(""); },
                         [](double, const double*, Sparse& J) { one_by_one(0.0, J); });
-    testing::internal::CaptureStderr();
-    try {
-        solver.advance(1.0);
-        FAIL() << "no exception";
-    } catch (const std::invalid_argument& e) {
-        const std::string what = e.what();
-        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-        EXPECT_NE(what.find("initial time"), std::string::npos) << what;
-    }
-    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    const std::string what = one_line_failure<std::invalid_argument>(solver, 1.0);
+    EXPECT_NE(what.find("initial time"), std::string::npos) << what;
 }
 
 // y' = y^2, y(0) = 1: y = 1/(1 - t) blows up at t = 1; CVODE integrates up to close to it, then fails.
@@ -45,16 +54,8 @@ TEST(CvodeFailures, AFailureLaterInTheRunIsASolverFailureOfOneLine)
     opt.max_steps = 2000;
     pd::CvodeBdf solver({1.0}, 0.0, [](double, const double* y, double* ydot) { ydot[0] = y[0] * y[0]; },
                         [](double, const double* y, Sparse& J) { one_by_one(2 * y[0], J); }, opt);
-    testing::internal::CaptureStderr();
-    try {
-        solver.advance(2.0);
-        FAIL() << "no exception";
-    } catch (const pd::SolverFailure& e) {
-        const std::string what = e.what();
-        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-        EXPECT_GT(solver.time(), 0.5);  // the run got well past its start
-    }
-    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    one_line_failure<pd::SolverFailure>(solver, 2.0);
+    EXPECT_GT(solver.time(), 0.5);  // the run got well past its start
 }
 
 }  // namespace

@@ -35,7 +35,6 @@ public:
     void write(const std::filesystem::path& path) const;
 
     bool saving() const { return mode_ == Mode::save; }
-    bool contains(const std::string& name) const { return entries_.count(name) > 0; }
 
     // Visits one entry: saving stores the value, loading restores it.
     void operator()(const std::string& name, std::vector<double>& v);
