@@ -11,6 +11,7 @@
 // --thermal-integrator cvode there are no checkpoints.
 #pragma once
 #include "pd/core/state_archive.hpp"
+#include "pd/io/checkpoints.hpp"
 #include "pd/io/options.hpp"
 #include "pd/io/point_cloud.hpp"
 
@@ -28,43 +29,17 @@
 
 namespace pd_run {
 
-// The signal that asked the run to stop (SIGINT, SIGTERM); 0 while none did.
-inline volatile std::sig_atomic_t stop_signal = 0;
-// The first signal asks the run to stop after its step; a second one ends it at once (the default
-// action), for a step or a set-up that takes too long. Both calls are async-signal-safe.
-inline void on_stop_signal(int sig)
-{
-    if (stop_signal != 0) {
-        std::signal(sig, SIG_DFL);
-        std::raise(sig);
-    }
-    stop_signal = sig;
-}
-inline void catch_stop_signals()
-{
-    std::signal(SIGINT, on_stop_signal);
-    std::signal(SIGTERM, on_stop_signal);
-}
+using pd::io::catch_stop_signals;
+using pd::io::first_difference;
+using pd::io::stop_signal;
 
-// Options a restart may change: where and how often output goes, and how long the run is.
-inline bool restart_may_change(const std::string& name)
-{
-    for (const char* o : {"restart", "checkpoint-every", "out", "threads", "steps", "thermal-steps", "output-steps"})
-        if (name == o) return true;
-    return false;
-}
-
-// The physics of a run as text: one "name = value" line per option a restart may not change, and
-// the point cloud's size and checksum (FNV-1a of its columns' bytes).
+// The physics of a run as text (io/checkpoints.hpp): every option but those a restart may change
+// (where and how often output goes, and how long the run is), and the point cloud's size and
+// checksum (FNV-1a of its columns' bytes).
 inline std::string physics_fingerprint(const pd::io::Options& opt, const pd::io::PointCloud& pc)
 {
-    std::ostringstream text, out;
-    opt.echo(text);
-    std::istringstream echo(text.str());
-    for (std::string line; std::getline(echo, line);) {
-        const std::size_t a = line.find_first_not_of(' '), b = line.find(" = ");
-        if (a == std::string::npos || b == std::string::npos || !restart_may_change(line.substr(a, b - a))) out << line << '\n';
-    }
+    const std::string options =
+        pd::io::options_fingerprint(opt, {"restart", "checkpoint-every", "out", "threads", "steps", "thermal-steps", "output-steps", "max-steps"});
     std::uint64_t h = 1469598103934665603ull;
     auto mix = [&](const void* p, std::size_t n) {
         for (std::size_t q = 0; q < n; ++q) h = (h ^ static_cast<const unsigned char*>(p)[q]) * 1099511628211ull;
@@ -74,20 +49,7 @@ inline std::string physics_fingerprint(const pd::io::Options& opt, const pd::io:
     mix_all(pc.volume), mix_all(pc.fixed), mix_all(pc.no_fail), mix_all(pc.T0), mix_all(pc.T_fixed);
     char cloud[96];
     std::snprintf(cloud, sizeof cloud, "  point cloud = %zu points, checksum %016llx\n", pc.size(), static_cast<unsigned long long>(h));
-    return out.str() + cloud;
-}
-
-// The first line in which two fingerprints differ, for the message of a refused restart.
-inline std::string first_difference(const std::string& saved, const std::string& now)
-{
-    std::istringstream a(saved), b(now);
-    std::string la, lb;
-    while (true) {
-        const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
-        if (!ga && !gb) return "";
-        if (!ga || !gb || la != lb) return "'" + (ga ? la.substr(la.find_first_not_of(' ')) : "-") + "' in the checkpoint, '" +
-                                          (gb ? lb.substr(lb.find_first_not_of(' ')) : "-") + "' in this run";
-    }
+    return options + cloud;
 }
 
 // Whether a log row or snapshot of step n belongs to a run whose last step is `last`: on the cadence

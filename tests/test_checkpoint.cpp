@@ -2,7 +2,8 @@
 // saved after k steps to a file and resumed by a newly built integrator ends bit for bit where the
 // uninterrupted run ends (displacements, velocities, intact bonds, energies), for bond breaking by
 // critical stretch and by critical micropotential, for a model rebuilt from its bonds (LPS) and for
-// models with history (plastic LPS and PALS, viscoelastic LPS). A damaged or foreign checkpoint is
+// models with history (plastic LPS and PALS, viscoelastic LPS, Flanagan-Taylor and viscoelastic
+// correspondence); a CSV file and a timer continue from their state. A damaged or foreign checkpoint is
 // refused with one line.
 #include "pd/core/lattice.hpp"
 #include "pd/core/state_archive.hpp"
@@ -11,7 +12,10 @@
 #include "pd/models/lps.hpp"
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"
+#include "pd/models/viscoelastic_correspondence.hpp"
 #include "pd/models/viscoelastic_lps.hpp"
+#include "pd/io/csv.hpp"
+#include "pd/core/timer.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/verlet.hpp"
 
@@ -21,6 +25,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,6 +37,18 @@ constexpr double dx = 1e-3, dt = 5e-8, rho = 7800;
 const Elastic steel = Elastic::from_E_nu(200e9, 0.3);
 
 Body<3> bar() { return box<3>({{0, 0, 0}}, {{6 * dx, 3 * dx, 3 * dx}}, dx); }
+
+// The model a make() built: the value itself, or what a holder points to (a model that keeps a
+// reference to another, e.g. the viscoelastic correspondence to its Flanagan-Taylor model).
+template <class M>
+M& model_of(M& m) { return m; }
+template <class M>
+M& model_of(std::unique_ptr<M>& m) { return *m; }
+struct ViscoelasticHolder {
+    std::unique_ptr<Correspondence<3>> inner;
+    std::unique_ptr<ViscoelasticCorrespondence> model;
+};
+ViscoelasticCorrespondence& model_of(ViscoelasticHolder& h) { return *h.model; }
 
 struct Outcome {
     Field<3> u, v;
@@ -50,8 +67,9 @@ Outcome run(Make make, Rule* rule, long total, long checkpoint_at, const std::fi
     const Body<3> body = bar();
     auto segment = [&](long from, long to, bool resume) {
         Bonds bonds = build_bonds(body, 3.015 * dx);
-        auto model = make(body, bonds);
-        Explicit<3, decltype(model)> ex(body, bonds, model, rho);
+        auto holder = make(body, bonds);
+        auto& model = model_of(holder);
+        Explicit<3, std::remove_reference_t<decltype(model)>> ex(body, bonds, model, rho);
         Rule fresh = rule ? *rule : Rule{};
         if (rule) ex.scene.set_damage(fresh);
         for (std::size_t i = 0; i < body.size(); ++i) ex.v.c[0][i] = v0 * (body.x.c[0][i] / (6 * dx) - 0.5);
@@ -154,6 +172,71 @@ TEST(Checkpoint, ViscoelasticRunRestartsBitForBit)
     CriticalStretch stretch;
     stretch.s0 = 5e-4;
     expect_restart_identical(make, &stretch, 20.0, "viscoelastic LPS, critical stretch");
+}
+
+// Rate-form stress (Flanagan-Taylor correspondence, with hourglass control): its unrotated stress,
+// rotation and stretch are history; and the viscoelastic correspondence built on it, with bond
+// breaking by critical stretch.
+TEST(Checkpoint, RateFormCorrespondenceRestartsBitForBit)
+{
+    using C3 = Correspondence<3>;
+    auto make_ft = [](const Body<3>& body, const Bonds& b) {
+        return std::make_unique<C3>(C3::Params{steel, C3::Law::flanagan_taylor, 0.02}, body, b);
+    };
+    CriticalStretch* none = nullptr;
+    expect_restart_identical(make_ft, none, 20.0, "Flanagan-Taylor correspondence");
+    auto make_visco = [](const Body<3>& body, const Bonds& b) {
+        ViscoelasticHolder h;
+        h.inner = std::make_unique<C3>(C3::Params{steel, C3::Law::flanagan_taylor, 0.02}, body, b);
+        h.model = std::make_unique<ViscoelasticCorrespondence>(*h.inner, ViscoelasticCorrespondence::Params{1, 1e-6}, body.x);
+        return h;
+    };
+    CriticalStretch stretch;
+    stretch.s0 = 5e-4;
+    expect_restart_identical(make_visco, &stretch, 20.0, "viscoelastic correspondence, critical stretch");
+}
+
+// A CSV file filled by a run: the rows written before a checkpoint, restored into a new writer of the
+// same file, are followed by the rows after it, as in one writer; a timer goes on from its seconds.
+TEST(Checkpoint, CsvWriterAndTimerContinueFromTheirState)
+{
+    const std::filesystem::path dir = pd_test::scratch_dir();
+    auto rows = [](io::CsvWriter& w, int from, int to) {
+        for (int k = from; k < to; ++k) w.row({k, 0.1 * k});
+    };
+    {
+        io::CsvWriter whole(dir / "whole.csv", {"k", "x"});
+        rows(whole, 0, 10);
+    }
+    StateArchive saved;
+    {
+        io::CsvWriter first(dir / "cut.csv", {"k", "x"});
+        rows(first, 0, 4);
+        first.state(saved);
+    }
+    {
+        std::ofstream(dir / "cut.csv") << "k,x\nrows of a later run that the restart must replace\n";
+        io::CsvWriter again(dir / "cut.csv", {"k", "x"});
+        const std::filesystem::path file = dir / "saved.pdstate";
+        saved.write(file);
+        StateArchive loaded = StateArchive::read(file);
+        again.state(loaded);
+        EXPECT_EQ(again.rows(), 4u);
+        rows(again, 4, 10);
+    }
+    std::ifstream a(dir / "whole.csv"), b(dir / "cut.csv");
+    const std::string ta((std::istreambuf_iterator<char>(a)), {}), tb((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_EQ(ta, tb);
+
+    StateArchive t;
+    double stored = 100;  // a timer that had run 100 s before the stop
+    t("wall", stored);
+    t.write(dir / "timer.pdstate");
+    StateArchive tl = StateArchive::read(dir / "timer.pdstate");
+    io::Timer timer;
+    timer.state(tl, "wall");
+    EXPECT_GE(timer.seconds(), 100.0);
+    EXPECT_LT(timer.seconds(), 160.0);  // plus this test's own time since
 }
 
 TEST(Checkpoint, ForeignOrDamagedFilesAreRefusedWithOneLine)

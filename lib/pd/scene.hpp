@@ -97,9 +97,11 @@ public:
     const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
 
     // The scene's part of a checkpoint: the intact flags, the positions of the last evaluation, the
-    // damage rule's state and the model's. A model with history (or a rate-form stress) keeps its
-    // own by state(ar); any other model is rebuilt on loading from the restored bonds and positions
-    // by the functions that built it (recompute after breaks, the point pass): bit for bit the same.
+    // damage rule's state and the model's. A model with history keeps its own by state(ar) (and may
+    // rebuild(bonds, y) what its last evaluation derived from it); a rate-form stress keeps its
+    // history by rate_state(ar); any other model is rebuilt on loading from the restored bonds and
+    // positions by the functions that built it (recompute after breaks, the point pass): bit for bit
+    // the same.
     void state(StateArchive& ar)
     {
         ar("bonds.intact", bonds.intact);
@@ -112,10 +114,12 @@ public:
                 model.recompute(bonds);
         if constexpr (HasState<Model>) {
             model.state(ar);  // after recompute: the model's own state is the newer one
+            if constexpr (requires { model.rebuild(bonds, y_); })
+                if (!ar.saving()) model.rebuild(bonds, y_);  // what its last evaluation derived from the state
         } else {
             if constexpr (HistoryModel<Model, D>) throw std::logic_error("checkpoint: this history model has no state(ar): not checkpointable");
             if constexpr (D == 3 && RateFormModel<Model>)
-                if (model.rate_form()) throw std::logic_error("checkpoint: a rate-form (Flanagan-Taylor) stress is not checkpointable");
+                if (model.rate_form()) model.rate_state(ar);  // the stress the point pass below takes
             if constexpr (!HistoryModel<Model, D> && Model::has_point_pass)
                 if (!ar.saving()) model.point_pass(bonds, y_);
         }

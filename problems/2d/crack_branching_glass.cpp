@@ -78,6 +78,7 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("no-fail-rows", 0);
     opt.require_range("threshold", 0, 1, false, true);
     opt.require_range("walk-threshold", 0, 1, false, true);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     const bool duran = material == "duran50";
     if (std::isnan(E)) E = duran ? 65e9 : 72e9;
@@ -132,7 +133,9 @@ static int run_case(int argc, char** argv)
                 const pd::crack::Mask crack = connected(p);
                 tips.push(t, pd::crack::tip_along(body.x, p, origin, dir, threshold, crack));
                 phi = std::move(p);
-            }, protect, !quick);
+            }, {.no_fail = protect, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) {
+                tips.state(ar, "tips"), ar("phi", phi), ar("seeds", seeds);
+            }});
 
         // 6. Metrics: initiation (tip one dx beyond its start), branch (crack_metrics.hpp rule,
         //    confirm over 4 mm, branch lines fitted over 10 mm), speeds over the window.

@@ -66,6 +66,7 @@ static int run_case(int argc, char** argv)
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
     for (const char* o : {"E", "rho", "Gc", "sigma", "size", "crack", "dx", "dt", "dt-factor", "t-end"}) opt.require_positive(o);
     opt.require_range("walk-threshold", 0, 1, false, true);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     if (!(a0 < L)) opt.fail("option --crack must be shorter than --size");
     const bool quick = run.quick();
@@ -125,7 +126,8 @@ static int run_case(int argc, char** argv)
                 std::numeric_limits<long>::max(), [&](double, std::vector<double> p, auto&) {
                     if (seeds.empty()) seeds = p;
                     phi = std::move(p);
-                }, {}, !quick);
+                }, {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(),
+                    .sampler_state = [&](pd::StateArchive& ar) { ar("phi", phi), ar("seeds", seeds); }});
 
             // 6. Path of the crack connected to the pre-crack, against the line y = L/2.
             pd::crack::Mask s(body.size());

@@ -63,6 +63,7 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("m", 1);
     opt.require_range("threshold", 0, 1, false, true);
     opt.require_range("walk-threshold", 0, 1, false, true);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     if (!(a0 < L) || !(gap < H)) opt.fail("option --notch/--notch-distance: notches must lie inside the plate");
     const bool quick = run.quick();
@@ -120,7 +121,9 @@ static int run_case(int argc, char** argv)
                 h_up.push(t, pd::crack::tip_farthest(body.x, p, tip_up, threshold, crack_of(p, side_up)));
                 h_low.push(t, pd::crack::tip_farthest(body.x, p, tip_low, threshold, crack_of(p, side_low)));
                 phi = std::move(p);
-            }, {}, !quick);
+            }, {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) {
+                h_up.state(ar, "tips_upper"), h_low.state(ar, "tips_lower"), ar("phi", phi), ar("seeds", seeds);
+            }});
 
         // 6. Metrics: angle of each crack from its damaged nodes beyond 2 delta of the notch tip.
         auto angle = [&](const pd::Vec<2>& tip, const pd::crack::Mask& side) {

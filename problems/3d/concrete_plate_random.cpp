@@ -58,6 +58,7 @@ static int run_case(int argc, char** argv)
     for (const char* o : {"E", "rho", "size", "thickness", "delta", "speed", "s-mean", "t-end", "dt-factor"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
     opt.require_at_least("seeds", 1);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     if (!(s_sd >= 0)) opt.fail("option --s-sd must be >= 0");
     run.quick_default("size", 0.15);
@@ -65,7 +66,8 @@ static int run_case(int argc, char** argv)
     if (!opt.given("t-end")) t_end *= (8e-3 / speed) * (L / 0.5);
     run.start();
     const std::filesystem::path& out = run.out();
-    const pd::io::Timer timer;
+    pd::io::Checkpoints& cp = run.checkpoints();
+    pd::io::Timer timer;
 
     // 2. Discretisation: one layer of points, grips delta wide at both ends.
     const double dx = delta / m, nu = 0.25;
@@ -108,11 +110,10 @@ static int run_case(int argc, char** argv)
         sim.scene.set_damage(cs);
         sim.boundary.fix(A);
         sim.boundary.prescribe({pd::Prescribed::Kind::velocity, B, 0, pd::TimeFunction::constant(speed)});
-        sim.start();
         pd::io::CsvWriter curve(out / ("curve_seed" + std::to_string(s) + ".csv"),
                                 {"t_s", "U_m", "F_N", "stress_Pa", "strain", "E_elastic_J", "E_kinetic_J", "W_ext_J", "E_damage_J"});
         SeedResult r{};
-        std::vector<std::pair<double, double>> lin;  // (strain, stress) samples
+        std::vector<double> strains, stresses;  // the samples
         double F_max = 0;
         auto sample = [&](const pd::Energies& e) {
             double F = 0;  // reaction at grip B [N]: -sum f_x V
@@ -121,19 +122,24 @@ static int run_case(int argc, char** argv)
             const double Ed = e.external_work - e.strain - e.kinetic;
             curve.row({sim.t, U, F, stress, strain, e.strain, e.kinetic, e.external_work, Ed});
             if (F > F_max) F_max = F, r.t_peak = sim.t, r.F_peak = F, r.strain_peak = strain;
-            lin.push_back({strain, stress});
+            strains.push_back(strain), stresses.push_back(stress);
             r.E_damage = Ed;
             if (F_max > 0 && F < 0.05 * F_max && sim.t > r.t_peak) r.failed = true;
         };
-        for (long n = 1; n <= steps && !r.failed; ++n) {
+        auto state = [&](pd::StateArchive& ar) {  // what a checkpoint holds (io/checkpoints.hpp)
+            sim.state(ar), curve.state(ar), timer.state(ar, "wall"), ar("strains", strains), ar("stresses", stresses), ar("F_max", F_max);
+            ar("t_peak", r.t_peak), ar("F_peak", r.F_peak), ar("strain_peak", r.strain_peak), ar("E_damage", r.E_damage), ar("failed", r.failed);
+        };
+        cp.loop(steps, state, [&] { sim.start(); }, [&](long n) {
             sim.step(dt);
             if (n % every == 0 || n == steps) sample(sim.check_energy());
-        }
+            return !r.failed;
+        });
         // Apparent modulus: least-squares slope through the origin of the samples with strain in
         // [0.2, 0.6] x the peak strain (past the first wave transits, before the damage spreads).
         double sxy = 0, sxx = 0;
-        for (auto [x, y] : lin)
-            if (x >= 0.2 * r.strain_peak && x <= 0.6 * r.strain_peak) sxy += x * y, sxx += x * x;
+        for (std::size_t k = 0; k < strains.size(); ++k)
+            if (const double x = strains[k], y = stresses[k]; x >= 0.2 * r.strain_peak && x <= 0.6 * r.strain_peak) sxy += x * y, sxx += x * x;
         r.modulus = sxx > 0 ? sxy / sxx : NAN;
         r.broken = sim.broken_bonds;
         res.push_back(r);

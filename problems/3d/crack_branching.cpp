@@ -75,6 +75,7 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("m", 1);
     opt.require_range("threshold", 0, 1, false, true);
     opt.require_range("walk-threshold", 0, 1, false, true);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     const bool quick = run.quick();
     run.quick_default("dx", 2e-3);  // 2000 nodes: the whole pipeline in seconds
@@ -125,7 +126,10 @@ static int run_case(int argc, char** argv)
             phi = std::move(p);
             u_max = 0;
             for (std::size_t i = 0; i < body.size(); ++i) u_max = std::max(u_max, norm(sim.u[i]));
-        }, {}, !quick);
+        }, {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) {
+            tip_mid.state(ar, "tips_mid"), tip_bot.state(ar, "tips_bottom"), tip_top.state(ar, "tips_top");
+            ar("phi", phi), ar("seeds", seeds), ar("u_max", u_max);
+        }});
 
     // 6. Metrics on the mid layer (crack_metrics rule: confirm over 4 mm, fit over 10 mm) and, for
     //    comparison, on the bottom surface layer; surface-mid tip gap over the whole history.

@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <tuple>
 #include <utility>
@@ -87,9 +88,9 @@ std::pair<double, double> first_break_position(const pd::Body<3>& body, const pd
 }
 
 // One cell: the bar pulled to strain_end at the given rate, until 5 us after the first broken bond.
-Fracture fracture_time(const Material& p, double delta, double m, bool micro)
+Fracture fracture_time(const Material& p, double delta, double m, bool micro, pd::io::Checkpoints& cp)
 {
-    const pd::io::Timer timer;
+    pd::io::Timer timer;
     const double L = 5e-3, W = 1e-3, dx = delta / m, t_max = strain_end / p.rate;
     // Grips outside the bar [0, Lb] (Lb = L rounded to whole cells, so that both grips have
     // ceil(delta/dx) layers), or the end layers of the bar (--grips inside).
@@ -132,15 +133,18 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro)
     else ex.scene.set_damage(cs);
     const double c = pd::PMB::micromodulus({p.mat, 3}, pd::Influence{}, delta);
     const double dt = p.dt_factor * pd::critical_step_silling_askari(bonds, ex.rho, c).dt;
-    ex.start();
     double t_break = NAN, from_end = NAN, from_face = NAN;
-    while (ex.t < t_max && (std::isnan(t_break) || ex.t < t_break + 5e-6)) {
+    auto state = [&](pd::StateArchive& ar) {  // what a checkpoint holds (io/checkpoints.hpp)
+        ex.state(ar), timer.state(ar, "wall"), ar("t_break", t_break), ar("from_end", from_end), ar("from_face", from_face);
+    };
+    cp.loop(std::numeric_limits<long>::max(), state, [&] { ex.start(); }, [&](long) {
         ex.step(dt);
         if (std::isnan(t_break) && ex.broken_bonds > 0) {
             t_break = ex.t;
             std::tie(from_end, from_face) = first_break_position(body, bonds, x_lo, x_hi);
         }
-    }
+        return ex.t < t_max && (std::isnan(t_break) || ex.t < t_break + 5e-6);  // on until 5 us after the first break
+    });
     return {t_break, timer.seconds(), from_end, from_face};
 }
 
@@ -166,6 +170,7 @@ int run_case(int argc, char** argv)
     for (const char* q : {"E", "rho", "Gc", "rate", "dt-factor"}) opt.require_positive(q);
     opt.require_range("nu", -1, 0.5, false, false);
     opt.require_at_least("C-hg", 0);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     const bool quick = run.quick(), full = opt.get_flag("full");
     std::vector<std::pair<double, double>> cells;  // (delta, m)
@@ -199,7 +204,7 @@ int run_case(int argc, char** argv)
         const double t_qs = pd::s0_pmb_3d(p.Gc, p.mat.K, delta) / p.rate;
         std::array<double, 3> row{delta, NAN, NAN};
         for (bool micro : {false, true}) {
-            const auto [t, wall, from_end, from_face] = fracture_time(p, delta, m, micro);
+            const auto [t, wall, from_end, from_face] = fracture_time(p, delta, m, micro, run.checkpoints());
             const double ref = published(delta, m, micro);
             const char* rule = micro ? "micro" : "stretch";
             std::printf("%-8.2f %-5.2f %-8s %10.2f %10.1f %+7.1f%% %10.1f %8.1f %9.3e %7.2f %7.2f\n", delta * 1e3, m, rule, t * 1e6, ref * 1e6,

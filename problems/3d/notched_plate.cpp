@@ -12,8 +12,7 @@
 // Measured: fracture start = first broken bond; end = the crack tip (largest x of a node whose damage
 // grew by >= 0.35 since t = 0) reaches the last node column; bonds broken after the end (damage
 // spreading); wall time per run. Compared: Tables 8.1-8.3 (trends only: notch width and rho unknown).
-// Run: notched_plate_3d [--runs none,stretch,micro,visco] [--etas 1.01,1.1,3] [--E --nu --rho --Gc --delta
-//   --m --C-hg --strain --t-ramp --t-end --no-fail --dt-factor --sample] [--quick] [--check] [--out DIR]
+// Run: notched_plate_3d [--runs none,stretch,micro,visco] [--etas 1.01,1.1,3] [--quick] [--check] [--out DIR] (--help: all)
 // Writes: history_<run>.csv (t, stress, broken bonds, tip), runs.csv, summary.csv, params.csv.
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
@@ -61,40 +60,40 @@ struct Result {
 // clamped grips ramped apart, velocity Verlet to t_end; the measurements of the header, history_<name>.csv.
 template <class Make>
 Result run_plate(const Setup& s, const std::string& name, const std::string& damage, Make make, const std::filesystem::path& out,
-                 double dt_divisor = 1)
+                 pd::io::Checkpoints& cp, double dt_divisor = 1)
 {
     Result r{name};
-    const pd::io::Timer timer;
+    pd::io::Timer timer;
     pd::Bonds bonds = pd::build_bonds(s.body, s.delta, {.keep = pd::cut_by_rectangle(s.body, {{-s.dx, s.y_notch, -s.dx}},
                                                                                       {{s.a + s.dx, 0, 0}}, {{0, 0, s.thick + 2 * s.dx}})});
     bonds.enable_damage();
     const std::vector<double> phi0 = pd::point_damage(bonds);
     auto holder = make(bonds);
-    auto& model = *holder;
-    using Model = std::remove_reference_t<decltype(model)>;
-    pd::Explicit<3, Model> ex(s.body, bonds, model, s.rho);
+    pd::Explicit<3, std::remove_reference_t<decltype(*holder)>> ex(s.body, bonds, *holder, s.rho);
     pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta), .s0_bond = {}, .no_fail = {}};
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(s.Gc, s.delta);
     cs.protect(s.protect, s.body.size()), mp.protect(s.protect, s.body.size());
     if (damage == "stretch") ex.scene.set_damage(cs);
     if (damage == "micro") ex.scene.set_damage(mp);
-    const double stretch = 0.5 * s.strain * s.gauge;  // grip displacement at the end of the ramp [m]
     for (int d = 0; d < 3; ++d) {
-        const double g = d == 1 ? stretch : 0;
+        const double g = d == 1 ? 0.5 * s.strain * s.gauge : 0;  // grip displacement at the end of the ramp [m]
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, s.bottom, d, pd::TimeFunction::ramp(-g, s.t_ramp)});
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, s.top, d, pd::TimeFunction::ramp(g, s.t_ramp)});
     }
-    ex.start();
     pd::io::CsvWriter csv(out / ("history_" + name + ".csv"), {"t_s", "stress_Pa", "broken_bonds", "tip_x_m"});
     const double dt = s.dt / dt_divisor;
     pd::require_steps(std::round(s.t_end / dt), "--t-end / dt");
     const long steps = std::lround(s.t_end / dt);
+    auto state = [&](pd::StateArchive& ar) {  // what a checkpoint holds (io/checkpoints.hpp)
+        ex.state(ar), csv.state(ar), timer.state(ar, "wall");
+        ar("t_start", r.t_start), ar("t_end", r.t_end), ar("peak_stress", r.peak_stress), ar("broken_at_end", r.broken_at_end);
+    };
     try {
-        for (long n = 1; n <= steps; ++n) {
+        cp.loop(steps, state, [&] { ex.start(); }, [&](long n) {
             ex.step(dt);
             if (std::isnan(r.t_start) && ex.broken_bonds > 0) r.t_start = ex.t;
-            if (n % (s.sample * static_cast<long>(dt_divisor)) != 0 && n != steps) continue;
+            if (n % (s.sample * static_cast<long>(dt_divisor)) != 0 && n != steps) return true;
             double reaction = 0;  // force on the top grip from the plate [N]
             for (int i : s.top) reaction -= ex.internal_force_density().c[1][i] * s.body.volume[i];
             const double stress = reaction / (s.L * s.thick);
@@ -107,13 +106,13 @@ Result run_plate(const Setup& s, const std::string& name, const std::string& dam
             }
             if (std::isnan(r.t_end) && tip > s.L - 1.5 * s.dx) { r.t_end = ex.t; r.broken_at_end = ex.broken_bonds; }
             csv.row({ex.t, stress, static_cast<double>(ex.broken_bonds), tip});
-        }
+            return true;
+        });
     } catch (const pd::Unstable& e) {
         std::printf("  %s: %s\n", name.c_str(), e.what());
         r.unstable = true;
     }
-    r.broken_final = ex.broken_bonds;
-    r.wall = timer.seconds();
+    r.broken_final = ex.broken_bonds, r.wall = timer.seconds();
     std::printf("  %-12s start %7.2f us, end %7.2f us, propagation %6.2f us, peak %.4g MPa, broken %ld (at end %ld), "
                 "detached %ld, %.1f s\n", name.c_str(), r.t_start * 1e6, r.t_end * 1e6, (r.t_end - r.t_start) * 1e6,
                 r.peak_stress * 1e-6, r.broken_final, r.broken_at_end, mp.detached_nodes + cs.detached_nodes, r.wall);
@@ -147,6 +146,7 @@ int run_case(int argc, char** argv)
     opt.require_range("nu", -1, 0.5, false, false);
     for (const char* p : {"m", "sample"}) opt.require_at_least(p, 1);
     for (const char* p : {"C-hg", "no-fail"}) opt.require_at_least(p, 0);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     const std::vector<double> etas = pd::io::list_option(opt, "etas", pd::io::ListValues::positive);
     for (double e : etas)
@@ -197,7 +197,7 @@ int run_case(int argc, char** argv)
     auto elastic = [&](const pd::Bonds& b) { return std::make_unique<C3>(C3::Params{s.mat, C3::Law::linear, s.C_hg}, s.body, b); };
     std::vector<Result> results;
     for (const std::string& run_name : runs) {
-        if (run_name != "visco") { results.push_back(run_plate(s, run_name, run_name, elastic, out)); continue; }
+        if (run_name != "visco") { results.push_back(run_plate(s, run_name, run_name, elastic, out, run.checkpoints())); continue; }
         for (double eta : etas) {
             const pd::MaxwellShear vp = pd::numerical_viscosity(s.mat.G, s.rho, s.dx, eta);
             std::unique_ptr<C3> inner;
@@ -210,7 +210,7 @@ int run_case(int argc, char** argv)
             std::snprintf(nm, sizeof nm, "micro_eta%g", eta);
             // The branch is relaxed within a step (tau_b < dt), but a step increment sees the stiffness
             // (1 + gamma_b) G = eta^2 G: dt is divided by eta (the wave-speed ratio), else eta = 3 is unstable.
-            results.push_back(run_plate(s, nm, "micro", visco, out, eta));
+            results.push_back(run_plate(s, nm, "micro", visco, out, run.checkpoints(), eta));
         }
     }
 

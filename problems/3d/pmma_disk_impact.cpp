@@ -54,9 +54,9 @@ struct Setup {
 };
 
 template <class Model>
-Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::filesystem::path& out)
+Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::filesystem::path& out, pd::io::Checkpoints& cp)
 {
-    const pd::io::Timer timer;
+    pd::io::Timer timer;
     pd::Explicit<3, Model> sim(s.body, bonds, model, s.rho);
     if (s.cs) sim.scene.set_damage(*s.cs);
     sim.boundary.fix(s.clamp);
@@ -64,7 +64,6 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
     pd::Impactor<3> tip{.mass = s.mass, .radius = s.radius, .c = {0, 0, s.z_top + s.radius}, .V = {0, 0, -s.v0}, .k = s.k_pen};
     tip.validate();
     sim.scene.extra_force = [&](double t, const pd::Field<3>& y, const pd::Field<3>&, pd::Field<3>& b) { tip(t, y, b, s.body.volume); };
-    sim.start();
     const double E0 = tip.kinetic_energy();  // [J]
     pd::io::CsvWriter h(out / "history.csv", {"t_s", "z_tip_m", "v_tip_m_s", "F_contact_N", "F_support_N", "E_tip_kinetic_J",
                                               "E_body_kinetic_J", "E_elastic_J", "E_contact_J", "E_damage_J", "broken_bonds"});
@@ -75,13 +74,18 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
     pd::WindowMean F_support(s.window), F_tip(s.window);  // window means of the support and tip forces [N]
     long broken_at_contact = -1;
     double Fc_max = 0, t_Fc_max = 0;  // maximum contact force on the tip [N] and its time [s]
-    for (long n = 1; n <= steps; ++n) {
+    auto state = [&](pd::StateArchive& ar) {  // what a checkpoint holds (io/checkpoints.hpp)
+        sim.state(ar), tip.state(ar), h.state(ar), F_support.state(ar, "F_support"), F_tip.state(ar, "F_tip"), timer.state(ar, "wall");
+        ar("t_first_break", o.t_first_break), ar("E_gap_pre", o.E_gap_pre), ar("E_damage", o.E_damage), ar("w_max", o.w_max);
+        ar("steps", o.steps), ar("broken_at_contact", broken_at_contact), ar("Fc_max", Fc_max), ar("t_Fc_max", t_Fc_max);
+    };
+    cp.loop(steps, state, [&] { sim.start(); }, [&](long n) {
         sim.step(s.dt);
         if (std::isnan(o.t_first_break) && sim.broken_bonds > 0) o.t_first_break = sim.t;
         double F_sup = 0;  // support reaction along z [N]: -sum f_z V over the clamped points
         for (int i : s.clamp) F_sup -= sim.internal_force_density().c[2][i] * s.body.volume[i];
         F_support.add(sim.t, s.dt, std::abs(F_sup)), F_tip.add(sim.t, s.dt, std::abs(tip.F[2]));
-        if (n % every && n != steps) continue;
+        if (n % every && n != steps) return true;
         const pd::Energies e = sim.check_energy();
         const double Uc = tip.contact_energy(sim.positions(), s.body.volume);
         const double Ed = E0 - tip.kinetic_energy() - e.kinetic - e.strain - Uc;  // by difference
@@ -96,8 +100,8 @@ Outcome simulate(Model& model, pd::Bonds& bonds, const Setup& s, const std::file
         if (std::abs(tip.F[2]) > Fc_max) Fc_max = std::abs(tip.F[2]), t_Fc_max = sim.t;
         // Stop: rebounding, or perforated (tip contact force below 2 % of its maximum 0.3 ms
         // after that maximum).
-        if (tip.V[2] > 0 || (sim.t > t_Fc_max + 3e-4 && std::abs(tip.F[2]) < 0.02 * Fc_max)) break;
-    }
+        return !(tip.V[2] > 0 || (sim.t > t_Fc_max + 3e-4 && std::abs(tip.F[2]) < 0.02 * Fc_max));
+    });
     // The source's first peak, dip and second peak, read on the window means (a drop of 10 %).
     o.peaks = pd::two_peaks(F_support.t_mid_s, F_support.mean);
     for (double F : F_support.mean) o.F_mean_max = std::max(o.F_mean_max, F);
@@ -142,10 +146,11 @@ static int run_case(int argc, char** argv)
                           "s-mean", "t-end", "force-window", "dt-factor"})
         opt.require_positive(o);
     opt.require_at_least("seed", 0);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     if (!(s_sd >= 0)) opt.fail("option --s-sd must be >= 0");
     if (!(r_clamp < 0.5 * D)) opt.fail("option --r-clamp must be below the disc radius");
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
+    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail("option --" + msg);
     const bool quick = run.quick();
     run.quick_default("dx", 2e-3);
     run.quick_default("t-end", 1.2e-3);
@@ -175,7 +180,7 @@ static int run_case(int argc, char** argv)
     const double z_top = *std::max_element(body.x.c[2].begin(), body.x.c[2].end());  // top layer of points [m]
     const Setup setup{body, clamp, rho, dt, t_end, v0, mass, 0.5 * tip_d, z_top, pd::Impactor<3>::default_penalty(E, dx, penalty), window, &cs};
     const Outcome o = pd::with_model<pd::PMB, pd::LPS>(pd::ModelChoice{.name = model_name, .material = mat}, body, bonds,
-                                     [&](auto& model) { return simulate(model, bonds, setup, out); });
+                                     [&](auto& model) { return simulate(model, bonds, setup, out, run.checkpoints()); });
 
     // 6. Crack pattern, summary, verdict.
     pd::io::CsvWriter dmg(out / "damage.csv", {"x_m", "y_m", "z_m", "phi"});

@@ -35,6 +35,7 @@
 #include "pd/core/bonds.hpp"
 #include "pd/core/errors.hpp"
 #include "pd/core/field.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/core/neighbors.hpp"
 
@@ -206,6 +207,13 @@ struct Impactor {
         const Vec<D> A_new = (1 / mass) * Fsum;
         if (dt > 0) V += (0.5 * dt) * (A + A_new);
         A = A_new, F = Fsum, t = tn, in_contact = count;
+    }
+
+    // A checkpoint of the impactor's motion (core/state_archive.hpp).
+    void state(StateArchive& ar)
+    {
+        ar("impactor.c", c), ar("impactor.V", V), ar("impactor.A", A), ar("impactor.F", F), ar("impactor.t", t);
+        ar("impactor.in_contact", in_contact);
     }
 
     double kinetic_energy() const { return 0.5 * mass * dot(V, V); }  // [J]

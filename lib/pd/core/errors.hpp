@@ -5,6 +5,7 @@
 //   SolverFailure: an implicit solver could not continue the run (exit status 3, one line).
 //   NonFiniteResult: a headline result of a finished run is nan or inf (exit status 3 too: the run's
 //   numbers are not to be trusted, whether or not --check was given).
+//   Interrupted: a stop signal ended the run after a checkpoint (exit status 128 + signal).
 //   require_memory: a scene too large for this machine is refused before it is allocated (status 2).
 //   require_steps: a run whose step count exceeds the step limit is refused before it loops (status 2).
 #pragma once
@@ -29,6 +30,13 @@ struct SolverFailure : std::runtime_error {
 
 struct NonFiniteResult : std::runtime_error {
     using std::runtime_error::runtime_error;
+};
+
+// A run stopped by a signal (SIGINT, SIGTERM) after its checkpoint was written (io/checkpoints.hpp);
+// exit status 128 + signal, the shell's convention for a run ended by that signal.
+struct Interrupted : std::runtime_error {
+    int signal;
+    Interrupted(const std::string& what, int signal) : std::runtime_error(what), signal(signal) {}
 };
 
 // The machine's physical memory [bytes] (0 when unknown).

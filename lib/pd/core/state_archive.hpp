@@ -16,6 +16,7 @@
 #pragma once
 #include "pd/core/field.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -35,6 +36,8 @@ public:
     void write(const std::filesystem::path& path) const;
 
     bool saving() const { return mode_ == Mode::save; }
+    // Throws std::invalid_argument naming the checkpoint file and `what`.
+    [[noreturn]] void fail(const std::string& what) const;
 
     // Visits one entry: saving stores the value, loading restores it.
     void operator()(const std::string& name, std::vector<double>& v);
@@ -42,10 +45,62 @@ public:
     void operator()(const std::string& name, double& x);
     void operator()(const std::string& name, long& x);
     void operator()(const std::string& name, std::string& s);
+    void operator()(const std::string& name, int& x)
+    {
+        long v = x;
+        (*this)(name, v);
+        x = static_cast<int>(v);
+    }
+    void operator()(const std::string& name, bool& x)
+    {
+        long v = x;
+        (*this)(name, v);
+        x = v != 0;
+    }
     template <int D>
     void operator()(const std::string& name, Field<D>& f)
     {
         for (int d = 0; d < D; ++d) (*this)(name + "." + "xyz"[d], f.c[d]);
+    }
+    template <int D>
+    void operator()(const std::string& name, Vec<D>& x)
+    {
+        std::vector<double> v(x.c.begin(), x.c.end());
+        (*this)(name, v);
+        for (int d = 0; d < D; ++d) x[d] = v[d];  // loading checked the length (D values)
+    }
+    template <int D>
+    void operator()(const std::string& name, std::vector<Vec<D>>& xs)  // stored as D arrays
+    {
+        Field<D> f(xs.size());
+        for (std::size_t i = 0; i < xs.size(); ++i) f.set(i, xs[i]);
+        if (!saving()) f = Field<D>();  // loading: any length
+        (*this)(name, f);
+        for (int d = 1; d < D; ++d)
+            if (f.c[d].size() != f.size()) fail("entry '" + name + "' is cut");
+        xs.resize(f.size());
+        for (std::size_t i = 0; i < xs.size(); ++i) xs[i] = f[i];
+    }
+
+    // A vector of fixed-size blocks of doubles (e.g. Eigen's fixed-size matrices), stored flat.
+    template <class M>
+    void blocks(const std::string& name, std::vector<M>& v)
+    {
+        static_assert(sizeof(M) % sizeof(double) == 0, "blocks of doubles only");
+        constexpr std::size_t n = sizeof(M) / sizeof(double);
+        std::vector<double> flat;
+        if (saving()) {
+            flat.resize(v.size() * n);
+            for (std::size_t i = 0; i < v.size(); ++i) std::copy(v[i].data(), v[i].data() + n, flat.begin() + i * n);
+        }
+        (*this)(name, flat);
+        if (saving()) return;
+        if (flat.size() % n != 0) fail("entry '" + name + "' is cut");
+        if (!v.empty() && v.size() != flat.size() / n)
+            fail("entry '" + name + "' has " + std::to_string(flat.size() / n) + " blocks, the run has " + std::to_string(v.size()) +
+                 " (a checkpoint of another scene)");
+        v.resize(flat.size() / n);
+        for (std::size_t i = 0; i < v.size(); ++i) std::copy(flat.begin() + i * n, flat.begin() + (i + 1) * n, v[i].data());
     }
 
 private:
@@ -59,7 +114,6 @@ private:
     std::map<std::string, Entry> entries_;
 
     const Entry& find(const std::string& name, Type type) const;
-    [[noreturn]] void fail(const std::string& what) const;
 };
 
 }  // namespace pd

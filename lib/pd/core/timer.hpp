@@ -12,6 +12,8 @@
 //     for (long n = 0; n < n_steps; ++n) { step(); progress.update(n + 1); }
 //     progress.finish();
 #pragma once
+#include "pd/core/state_archive.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -34,6 +36,15 @@ public:
         const double s = std::chrono::duration<double>(now - start_).count();
         start_ = now;
         return s;
+    }
+
+    // A checkpoint of the seconds so far (core/state_archive.hpp): a resumed run's timer goes on
+    // from them, so that its wall time counts the time before the stop too.
+    void state(StateArchive& ar, const std::string& name)
+    {
+        double s = seconds();
+        ar(name, s);
+        if (!ar.saving()) start_ = clock::now() - std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(s));
     }
 
 private:

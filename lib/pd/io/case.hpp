@@ -17,7 +17,9 @@
 // one-line message and status 2, before any computation. The files a previous run wrote there
 // (its OutputManifest, csv.hpp) are removed first, so that the folder holds one run's files.
 // --threads is at most 4x the processors (above the processors: a warning).
+// allow_checkpoints(): the driver's time loops are restartable (io/checkpoints.hpp).
 #pragma once
+#include "pd/io/checkpoints.hpp"
 #include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/io/options.hpp"
@@ -63,11 +65,22 @@ public:
         parse(argc, argv);
         start();
     }
+    // A driver whose time loops save their state (io/checkpoints.hpp) calls this before parse():
+    // it adds --checkpoint-every, --resume and --stop-after.
+    void allow_checkpoints() { checkpoints_allowed_ = true; }
+    Checkpoints& checkpoints() { return checkpoints_; }
+
     // The standard options are registered here, after the driver's own (so they close --help and
     // params.csv).
     void parse(int argc, const char* const* argv)
     {
         add_standard(opt, default_out_, out_help_);
+        if (checkpoints_allowed_) {
+            opt.add_int("checkpoint-every", 0, "steps between checkpoints of each time loop (0: only when stopped by a signal)");
+            opt.add_flag("resume", "continue the stopped run whose checkpoints are in --out (same options)");
+            opt.add_int("stop-after", 0, "stop after this many steps, with a checkpoint, as on SIGINT (0: never)");
+            for (const char* o : {"checkpoint-every", "stop-after"}) opt.require_at_least(o, 0);
+        }
         opt.require_range("threads", 0, max_threads());
         opt.parse(argc, argv);
         quick_ = opt.get_flag("quick");
@@ -80,9 +93,19 @@ public:
         std::error_code ec;
         std::filesystem::create_directories(out_, ec);
         if (ec || !std::filesystem::is_directory(out_)) opt.fail("option --out: cannot create the folder '" + out_.string() + "'");
+        const bool resume = checkpoints_allowed_ && opt.get_flag("resume");
+        if (checkpoints_allowed_) {
+            try {
+                checkpoints_.configure(opt.get_int("checkpoint-every"), resume, opt.get_int("stop-after"), out_,
+                                       options_fingerprint(opt, {"out", "threads", "check", "max-steps", "checkpoint-every", "resume", "stop-after"}));
+            } catch (const std::invalid_argument& e) {
+                opt.fail(e.what());
+            }
+        }
         opt.echo(std::cout);
         try {
-            OutputManifest::begin(out_);  // removes the files of the previous run into out_ (csv.hpp)
+            if (resume) OutputManifest::resume(out_);  // keeps the checkpoints and files of the run it continues
+            else OutputManifest::begin(out_);          // removes the files of the previous run into out_ (csv.hpp)
             opt.save_csv(out_ / "params.csv");
         } catch (const std::exception& e) {
             opt.fail("option --out: " + std::string(e.what()));
@@ -131,6 +154,7 @@ public:
     // is written; a quantity the run does not measure is a not_measured row (csv.hpp).
     [[gnu::format(printf, 2, 3)]] int finish(const char* headline, ...)
     {
+        checkpoints_.remove_all();  // the run is complete
         if (!rows_.empty()) write_summary(out_ / "summary.csv", rows_);
         for (const SummaryRow& r : rows_)
             if (r.measured && !std::isfinite(r.value))
@@ -151,7 +175,8 @@ private:
     std::filesystem::path out_;
     Checks checks_;
     std::vector<SummaryRow> rows_;
-    bool quick_ = false, check_mode_ = false;
+    bool quick_ = false, check_mode_ = false, checkpoints_allowed_ = false;
+    Checkpoints checkpoints_;
 };
 
 }  // namespace pd::io

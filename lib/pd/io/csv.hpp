@@ -20,6 +20,8 @@
 // field count differs from the header's. Errors throw std::runtime_error("<path>:<line>: ...").
 #pragma once
 
+#include "pd/core/state_archive.hpp"
+
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -264,6 +266,29 @@ public:
         flush();
         out_.close();
         if (!file_.publish()) throw std::runtime_error("cannot rename " + file_.part().string() + " to " + path_.string());
+    }
+
+    // A checkpoint of the file so far (core/state_archive.hpp, entry "csv.<file name>"): saving
+    // stores the text written; loading writes that text back in place of this writer's, so that the
+    // rows a resumed run adds follow those of the run it continues.
+    void state(StateArchive& ar)
+    {
+        const std::string entry = "csv." + path_.filename().string();
+        std::string text;
+        long rows = static_cast<long>(rows_);
+        if (ar.saving()) {
+            flush();
+            std::ifstream in(file_.part(), std::ios::binary);
+            text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+            if (!in && !in.eof()) throw std::runtime_error("cannot read back " + file_.part().string());
+        }
+        ar(entry, text), ar(entry + ".rows", rows);
+        if (ar.saving()) return;
+        out_.close();
+        out_.open(file_.part(), std::ios::out | std::ios::trunc | std::ios::binary);
+        out_ << text;
+        flush();
+        rows_ = static_cast<std::size_t>(rows), has_header_ = true;
     }
 
     const std::filesystem::path& path() const { return path_; }

@@ -2,7 +2,8 @@
 //   0 done, 1 a --check failed (the driver returns it), 2 invalid input (one line naming it),
 //   3 the run became unstable (step and node named; files written so far are kept) or ended with a
 //     non-finite headline result (the quantity named; summary.csv is written first) or a solver
-//     could not continue it (SolverFailure).
+//     could not continue it (SolverFailure);
+//   128 + signal: SIGINT or SIGTERM stopped the run after writing its checkpoint (io/checkpoints.hpp).
 // Library calls reject impossible scenes with std::invalid_argument (empty node set, lattice
 // thinner than a cell, dx <= 0, ...); here they become the one-line message and status 2.
 //
@@ -31,6 +32,9 @@ int guarded_main(const char* program, Fn&& fn)
     } catch (const NonFiniteResult& e) {
         std::fprintf(stderr, "%s: %s\n", program, e.what());
         return 3;
+    } catch (const Interrupted& e) {
+        std::fprintf(stderr, "%s: %s\n", program, e.what());
+        return 128 + e.signal;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "%s: error: %s\n", program, e.what());
         return 2;

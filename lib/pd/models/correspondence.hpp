@@ -45,6 +45,7 @@
 #include "pd/models/pmb.hpp"
 #include "pd/models/shape_tensor.hpp"
 #include "pd/core/parallel.hpp"
+#include "pd/core/state_archive.hpp"
 #include "pd/simd/translated_families.hpp"
 
 #include <Eigen/Dense>
@@ -344,6 +345,13 @@ struct Correspondence {
 
     // RateFormModel (models/rate_form.hpp): the stress of this instance needs update_stress each step.
     bool rate_form() const { return par.law == Law::flanagan_taylor; }
+    // The rate form's history for a checkpoint (core/state_archive.hpp): sigma_hat, R, V and the
+    // sigma of the last update; a point pass at the restored positions then rebuilds F and P.
+    void rate_state(StateArchive& ar)
+    {
+        ar.blocks("correspondence.sigma_hat", sigma_hat), ar.blocks("correspondence.R", R), ar.blocks("correspondence.V", V);
+        ar.blocks("correspondence.sigma", sigma);
+    }
 
     // Flanagan-Taylor update (3D): from F at y and Fdot at v, advance R, V, sigma_hat by dt [s]
     // and set sigma = R sigma_hat R^T (laws/flanagan_taylor.hpp; 000b sec. 1.5 [CODE] steps 1-8).

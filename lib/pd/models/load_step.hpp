@@ -20,8 +20,10 @@
 #pragma once
 #include "pd/core/bonds.hpp"
 #include "pd/core/field.hpp"
+#include "pd/core/state_archive.hpp"
 
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -77,6 +79,12 @@ public:
     }
 
     const Field<D>& committed_configuration() const { return y_c_; }
+    // The committed state for a checkpoint (core/state_archive.hpp), entries "<name>.*".
+    void state(StateArchive& ar, const std::string& name)
+    {
+        ar(name + ".y_c", y_c_);
+        ar.blocks(name + ".sigma_hat_c", sigma_hat_c_), ar.blocks(name + ".R_c", R_c_), ar.blocks(name + ".V_c", V_c_);
+    }
 
     Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const { return model.bond_force(i, k, j, Y); }
 

@@ -94,6 +94,17 @@ public:
         q_c_ = q, s_hat_c_ = s_hat;
     }
 
+    // Its part of a checkpoint (core/state_archive.hpp): the committed and the trial state, and the
+    // wrapped model's rate-form stress; rebuild() then redoes the wrapped model's point pass (F, P).
+    void state(StateArchive& ar)
+    {
+        model.rate_state(ar), step_.state(ar, "viscoelastic.committed");
+        ar("viscoelastic.dt", dt), ar("viscoelastic.y_t", y_t_), ar("viscoelastic.dissipation", dissipation);
+        ar.blocks("viscoelastic.q", q), ar.blocks("viscoelastic.s_hat", s_hat);
+        ar.blocks("viscoelastic.q_c", q_c_), ar.blocks("viscoelastic.s_hat_c", s_hat_c_);
+    }
+    void rebuild(const Bonds& b, const Field<3>& y) { model.point_pass(b, y); }
+
     template <class Pass>
     void with_kernel(Pass&& pass, const Bonds& b) const { model.with_kernel(pass, b); }
     Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }

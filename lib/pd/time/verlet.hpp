@@ -109,21 +109,19 @@ public:
     }
 
     // A checkpoint between steps (core/state_archive.hpp): state(ar) into a saving archive after any
-    // step; resume(ar) instead of start() on an Explicit set up the same way (scene, damage rule,
-    // density, boundary) continues the run bit for bit as the uninterrupted one.
+    // step; state(ar) from a loading archive (or resume(ar)) instead of start() on an Explicit set up
+    // the same way (scene, damage rule, density, boundary) continues the run bit for bit as the
+    // uninterrupted one.
     void state(StateArchive& ar)
     {
+        if (!ar.saving()) prepare();
         ar("explicit.u", u), ar("explicit.v", v), ar("explicit.a", a);
         ar("explicit.f", f_), ar("explicit.b", b_);
         ar("explicit.t", t), ar("explicit.step", step_count), ar("explicit.broken_bonds", broken_bonds);
         ar("explicit.external_work", external_work_), ar("explicit.initial_energy", initial_energy_);
         scene.state(ar);
     }
-    void resume(StateArchive& ar)
-    {
-        prepare();
-        state(ar);
-    }
+    void resume(StateArchive& ar) { state(ar); }
 
     void step(double dt)
     {

@@ -5,6 +5,7 @@
 // reaction of a clamped disc under a falling weight peaks, drops while damage spreads under the
 // tip, and rises again to final failure).
 #pragma once
+#include "pd/core/state_archive.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -31,6 +32,11 @@ public:
     }
     std::vector<double> t_mid_s;  // window centres [s]
     std::vector<double> mean;     // window means [unit of the signal]
+
+    void state(StateArchive& ar, const std::string& name)
+    {
+        ar(name + ".t_mid", t_mid_s), ar(name + ".mean", mean), ar(name + ".sum", sum_), ar(name + ".span", span_);
+    }
 
 private:
     double window_, sum_ = 0, span_ = 0;

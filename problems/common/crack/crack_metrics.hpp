@@ -30,6 +30,7 @@
 #include "pd/core/bonds.hpp"
 #include "problems/common/crack/crack_path.hpp"
 #include "pd/core/field.hpp"
+#include "pd/core/state_archive.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -139,6 +140,7 @@ struct TipHistory {
         t.push_back(time), x.push_back(tip.x), advance.push_back(tip.advance);
     }
     std::size_t size() const { return t.size(); }
+    void state(StateArchive& ar, const std::string& name) { ar(name + ".t", t), ar(name + ".x", x), ar(name + ".advance", advance); }
 
     // First time the advance exceeds the first sample's by min_advance [m]; nan if never.
     double initiation_time(double min_advance) const

@@ -3,12 +3,13 @@
 // c = 9E/(pi delta^3 t) plane stress, 48E/(5 pi delta^3) plane strain, 12E/(pi delta^4) in 3D, i.e.
 // the implied nu = 1/3, 1/4, 1/4), critical stretch s0 from Gc (spec/002 eq. 2.15a/b/c), velocity
 // Verlet (verlet.hpp) with the given boundary, and damage phi (eq. 2.17) handed to a sampler every
-// `every` steps and after the last. Rayleigh speed by Viktorov's approximation
-// c_R = c_s (0.862 + 1.14 nu)/(1 + nu), c_s = sqrt(E / (2 (1 + nu) rho)).
+// `every` steps and after the last; the loop is restartable (io/checkpoints.hpp). Rayleigh speed
+// by Viktorov's approximation c_R = c_s (0.862 + 1.14 nu)/(1 + nu), c_s = sqrt(E / (2 (1 + nu) rho)).
 // Also the CSV writers of the damage field and of the crack-path level curve (crack_metrics.hpp).
 #pragma once
 #include "problems/common/crack/crack_metrics.hpp"
 #include "pd/damage/critical_stretch.hpp"
+#include "pd/io/checkpoints.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/core/timer.hpp"
 #include "pd/models/pmb.hpp"
@@ -75,13 +76,24 @@ inline PMB make_pmb(const Material3D& mat, const Bonds& bonds, RunInfo& info)
     return model;
 }
 
+// What run_fracture does besides integrating: nodes whose bonds never break, the progress line of
+// core/timer.hpp on stderr (drivers pass !quick; it stays off in CI logs), and checkpoints of the
+// loop (io/checkpoints.hpp) with the sampler's own state (what it has accumulated: tip histories,
+// the last damage field), visited in both directions.
+struct FractureOptions {
+    NodeSet no_fail;
+    bool show_progress = false;
+    io::Checkpoints* checkpoints = nullptr;
+    std::function<void(StateArchive&)> sampler_state;
+};
+
 // Integrates to t_end with steps dt <= min(dt_max, safety dt_crit) (equal steps); sample(t, phi, sim)
-// every `every` steps and at the end; bonds touching no_fail nodes never break. Unstable propagates (files written by the sampler stay on disk).
-// show_progress: the progress line of core/timer.hpp on stderr (drivers pass !quick; it stays off in CI logs).
+// at t = 0, every `every` steps and at the end. Unstable propagates (files written by the sampler
+// stay on disk). Under --resume the loop continues from its checkpoint (the sampler is not called
+// again for the samples it had taken).
 template <int D, class Mat, class Sample>
 RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, const Boundary<D>& boundary,
-                     double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {},
-                     bool show_progress = false)
+                     double dt_max, double safety, double t_end, long every, Sample&& sample, const FractureOptions& o = {})
 {
     io::Timer timer;
     RunInfo info;
@@ -92,31 +104,37 @@ RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, const Bo
     info.steps = static_cast<long>(std::ceil(t_end / dt_bound * (1 - 1e-12)));  // 1e-12: t_end a multiple of dt_bound
     info.dt = t_end / info.steps;
     CriticalStretch damage{.s0 = info.s0, .s0_bond = {}, .no_fail = {}};
-    if (!no_fail.empty()) damage.protect(no_fail, body.size());
+    if (!o.no_fail.empty()) damage.protect(o.no_fail, body.size());
     Explicit<D, PMB> sim(body, bonds, model, mat.rho);
     sim.boundary = boundary;
     sim.scene.set_damage(damage);
-    sim.start();
-    sample(sim.t, point_damage(bonds), sim);
+    io::Checkpoints none;
+    auto state = [&](StateArchive& ar) {
+        sim.state(ar), timer.state(ar, "fracture.wall");
+        if (o.sampler_state) o.sampler_state(ar);
+    };
     const long energy_every = 100;  // stability guard cadence (steps)
-    io::Progress progress("fracture run", info.steps, show_progress);
-    for (long n = 1; n <= info.steps; ++n) {
+    io::Progress progress("fracture run", info.steps, o.show_progress);
+    auto start = [&] {
+        sim.start();
+        sample(sim.t, point_damage(bonds), sim);
+    };
+    (o.checkpoints ? *o.checkpoints : none).loop(info.steps, state, start, [&](long n) {
         sim.step(info.dt);
         progress.update(n);
         if (n % energy_every == 0) sim.check_energy();
         if (n % every == 0 || n == info.steps) sample(sim.t, point_damage(bonds), sim);
-    }
+        return true;
+    });
     info.broken = sim.broken_bonds;
     info.wall = timer.seconds();
     return info;
 }
 template <class Sample>
 RunInfo run_fracture_2d(const Body<2>& body, Bonds& bonds, const Material2D& mat, const Boundary<2>& boundary,
-                        double dt_max, double safety, double t_end, long every, Sample&& sample, const NodeSet& no_fail = {},
-                        bool show_progress = false)
+                        double dt_max, double safety, double t_end, long every, Sample&& sample, const FractureOptions& o = {})
 {
-    return run_fracture<2>(body, bonds, mat, boundary, dt_max, safety, t_end, every, std::forward<Sample>(sample), no_fail,
-                           show_progress);
+    return run_fracture<2>(body, bonds, mat, boundary, dt_max, safety, t_end, every, std::forward<Sample>(sample), o);
 }
 
 // Pre-crack as broken bonds (intact = 0 where cut(i, j), i.e. the bond crosses the crack), so
