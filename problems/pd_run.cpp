@@ -134,6 +134,7 @@ int main(int argc, char** argv)
     const int& checkpoint_every = opt.add_int("checkpoint-every", 0, "write OUT/checkpoint.pdstate every k steps (0 = only on SIGINT/SIGTERM)");
     const std::string& restart = opt.add_string("restart", "", "continue the run saved in this checkpoint (same options; --steps may grow)");
     const int& threads = opt.add_int("threads", 0, "OpenMP threads (0 = OpenMP default)");
+    const int& max_steps = opt.add_int("max-steps", 100000000, "refuse a run of more time steps than this (0 = no limit)");
     const std::string& mech = opt.add_string("mechanics", "on", "off: heat conduction only (needs --heat)", {"on", "off"});
     const pd_run::HeatOptions heat = pd_run::add_heat_options(opt, automatic);
     for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt", "k", "cv", "dt-thermal", "s0"})
@@ -144,7 +145,7 @@ int main(int argc, char** argv)
     opt.require_at_least("energy-every", 1);
     opt.require_at_least("vtu-every", 0);
     opt.require_at_least("threads", 0);
-    opt.require_at_least("checkpoint-every", 0);
+    for (const char* name : {"checkpoint-every", "max-steps"}) opt.require_at_least(name, 0);
     opt.parse(argc, argv);
 
     for (const char* name : {"input", "rho", "delta"})
@@ -178,6 +179,10 @@ int main(int argc, char** argv)
     cfg.partial_volume = pd::parse_partial_volume(pv);
     cfg.dt = dt;
     cfg.steps = mechanics ? steps : heat.steps;
+    pd::step_limit() = max_steps;
+    if (pd::step_limit() > 0 && cfg.steps > pd::step_limit())
+        fail(std::string("option ") + (mechanics ? "--steps" : "--thermal-steps") + " is more than --max-steps " + std::to_string(max_steps) +
+             " (raise it with --max-steps, 0 = none)");
     cfg.mechanics = mechanics;
     cfg.heat = {.model = heat.heat, .integrator = heat.integrator, .k = heat.k, .rho_cv = rho * heat.cv, .T0 = heat.T0,
                 .dt = heat.dt, .hourglass = heat.hourglass, .measure = cfg.measure,
