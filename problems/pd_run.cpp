@@ -180,9 +180,11 @@ int main(int argc, char** argv)
     cfg.dt = dt;
     cfg.steps = mechanics ? steps : heat.steps;
     pd::step_limit() = max_steps;
-    if (pd::step_limit() > 0 && cfg.steps > pd::step_limit())
-        fail(std::string("option ") + (mechanics ? "--steps" : "--thermal-steps") + " is more than --max-steps " + std::to_string(max_steps) +
-             " (raise it with --max-steps, 0 = none)");
+    try {
+        pd::require_steps(cfg.steps, mechanics ? "option --steps" : "option --thermal-steps");
+    } catch (const std::invalid_argument& e) {
+        fail(e.what());
+    }
     cfg.mechanics = mechanics;
     cfg.heat = {.model = heat.heat, .integrator = heat.integrator, .k = heat.k, .rho_cv = rho * heat.cv, .T0 = heat.T0,
                 .dt = heat.dt, .hourglass = heat.hourglass, .measure = cfg.measure,
@@ -232,6 +234,8 @@ int main(int argc, char** argv)
         if (dim == 1) return run<1>(cfg, pc);
         if (dim == 2) return run<2>(cfg, pc);
         return run<3>(cfg, pc);
+    } catch (const pd::TimeScaleBeyondSolver& e) {  // CVODE cannot start on the heat problem's time scale
+        fail("options --k, --cv, --rho, --delta: " + std::string(e.what()));
     } catch (const std::invalid_argument& e) {  // a scene the library refuses (e.g. a point far beyond the others)
         fail(e.what());
     } catch (const std::exception& e) {  // e.g. a write error in the output folder

@@ -33,7 +33,7 @@ inline pd::Elastic elastic_constants(const pd::io::Options& opt, int dim, pd::Pl
     if (kg) return {opt.get("K"), opt.get("G")};
     const double E = opt.get("E"), nu = dim == 1 ? 0.0 : opt.get("nu");  // 1D: only E enters
     const std::string msg = pd::validate_elastic(E, nu, dim, plane);
-    if (!msg.empty()) fail("option --" + msg);
+    if (!msg.empty()) fail(msg);
     return pd::Elastic::from_E_nu(E, nu);
 }
 

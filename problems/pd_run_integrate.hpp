@@ -194,8 +194,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     };
     VtuSeries vtu(cfg);
     auto state = [&](pd::StateArchive& ar) {  // the run's part of a checkpoint
-        if (ar.saving()) sim.state(ar);
-        else sim.resume(ar);
+        sim.state(ar);
         std::vector<double> rows = ar.saving() ? energy_rows : std::vector<double>{};
         ar("pd_run.energy_rows", rows);
         if (!ar.saving())

@@ -75,7 +75,7 @@ Outcome run(Make make, Rule* rule, long total, long checkpoint_at, const std::fi
         for (std::size_t i = 0; i < body.size(); ++i) ex.v.c[0][i] = v0 * (body.x.c[0][i] / (6 * dx) - 0.5);
         if (resume) {
             StateArchive ar = StateArchive::read(file);
-            ex.resume(ar);
+            ex.state(ar);
         } else {
             ex.start();
         }

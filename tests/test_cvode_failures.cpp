@@ -6,7 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -59,3 +65,18 @@ TEST(CvodeFailures, AFailureLaterInTheRunIsASolverFailureOfOneLine)
 }
 
 }  // namespace
+
+// In a driver the message names the options that set the time scale (Case::time_scale_set_by):
+// a conductivity of 1e25 W/(m K) leaves CVODE no step at t = 0 on the 1D bar.
+TEST(CvodeFailures, ADriverNamesTheOptionsOfTheTimeScale)
+{
+    const std::string err = testing::TempDir() + "cvode_driver.stderr";
+    const std::string cmd = std::string(PD_BIN_DIR) + "/agwai_bar_1d --quick --integrator cvode --k 1e25 --out " + testing::TempDir() +
+                            "cvode_driver > /dev/null 2> " + err;
+    const int raw = std::system(cmd.c_str());
+    std::ifstream in(err);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 2) << text;
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+    EXPECT_NE(text.find("error: options --k, --rho, --c, --length, --N, --m: CVODE"), std::string::npos) << text;
+}

@@ -89,6 +89,7 @@ int run_case(int argc, char** argv)
     for (const char* p : {"k", "rho", "c", "length", "area", "dt", "t-max"}) opt.require_positive(p);
     opt.require_at_least("m", 1);
     opt.require_at_least("N", 0);
+    run.time_scale_set_by("--k, --rho, --c, --length, --N, --m");
     run.start(argc, argv);
     const Bar cs{opt.get("k"), opt.get("rho"), opt.get("c"), opt.get("length"), opt.get("area"), opt.get("dt"),
           opt.get("t-max"), opt.get_int("m"), opt.get_string("volume") == "half"};

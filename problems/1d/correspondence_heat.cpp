@@ -54,6 +54,7 @@ int run_case(int argc, char** argv)
     opt.require_at_least("m", 1);
     run.parse(argc, argv);
     run.quick_default("N", 100);
+    run.time_scale_set_by("--k, --rho, --c, --length, --N, --m");
     run.start();
     const std::vector<double> chg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
     const int N = opt.get_int("N"), m = opt.get_int("m");

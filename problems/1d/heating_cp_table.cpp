@@ -83,6 +83,7 @@ int run_case(int argc, char** argv)
     opt.require_range("T-end", theta_min, theta_max, false, true);
     run.parse(argc, argv);
     if (!(opt.get("T-end") > opt.get("T0"))) opt.fail("--T-end must be above --T0");
+    run.time_scale_set_by("--rho, --source, --k, --dx");
     run.start();
     const Heating cs{opt.get("rho"), opt.get("source"), opt.get("T0"), opt.get("k"), opt.get("dx"), opt.get("area")};
     const double T_end = opt.get("T-end"), dt = opt.get("dt"), rtol = opt.get("rtol");

@@ -132,6 +132,7 @@ int run_case(int argc, char** argv)
     run.parse(argc, argv);
     if (!(std::min(opt.get("T0"), opt.get("T-end")) < opt.get("T-target") && opt.get("T-target") < std::max(opt.get("T0"), opt.get("T-end"))))
         throw std::invalid_argument("option --T-target must lie strictly between --T0 and --T-end");
+    run.time_scale_set_by("--rho, --c, --length, --N, --m");
     run.start();
     const Setup cs{opt.get("length"), opt.get("area"), opt.get("rho") * opt.get("c"), opt.get("T-a"), opt.get("T-b"),
                   opt.get("T0"), opt.get("T-end"), opt.get("T-target"), opt.get_int("m")};

@@ -106,6 +106,7 @@ int run_case(int argc, char** argv)
     opt.require_at_least("m", 1);
     run.parse(argc, argv);
     run.quick_default("dx", 2e-3);
+    run.time_scale_set_by("--k, --rho, --c, --dx, --m");
     run.start();
     const bool quick = run.quick();
     const double dx = opt.get("dx");

@@ -95,7 +95,7 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("n2", 0);
     opt.require_at_least("spectrum", 0);
     run.parse(argc, argv);
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail("option --" + msg);
+    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const std::vector<double> C_hg = pd::io::list_option(opt, "chg", pd::io::ListValues::non_negative);
     run.quick_default("n", 5);
     run.quick_default("n2", 8);

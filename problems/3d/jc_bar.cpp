@@ -143,7 +143,7 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("m", 1);
     opt.require_at_least("max-iter", 1);
     run.parse(argc, argv);
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail("option --" + msg);
+    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     if (plastic_part > 1) opt.fail("option --plastic-part must be <= 1");
     run.quick_default("steps", 25);
     run.quick_default("cells", 2);

@@ -65,6 +65,7 @@ static int run_case(int argc, char** argv)
     opt.require_at_least("steps", 1);
     opt.require_at_least("C-hg", 0);
     opt.require_at_least("max-iter", 1);
+    run.allow_checkpoints();
     run.parse(argc, argv);
     bar_opt.validate(opt);
     run.quick_default("n", 2);
@@ -85,12 +86,14 @@ static int run_case(int argc, char** argv)
     if (which != "all") models = {which};
     const Loading load{strain, steps, tol, max_iter, safety};
     auto none = [](const pd::Bonds&, const pd::Field<3>&) {};
+    auto stateless = [](pd::StateArchive&) {};  // models without history between load steps
     std::map<std::string, Run> runs;
     for (const std::string& name : models) {
         using Corr = pd::Correspondence<3>;
         const pd::Body<3>& body = s.g.body;
         auto load_steps = [&](auto& model, UniaxialLaw law, auto commit) {  // density: the model's reference-tangent bound
-            return stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit);
+            return stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit, run.checkpoints(),
+                           [&](pd::StateArchive& ar) { if constexpr (requires { model.state(ar, ""); }) model.state(ar, "load_step"); });
         };
         Run r;
         if (name == "pmb") {  // nu = 1/4, energy surface correction (classical W_inf), as bar_stiffness_3d
@@ -98,7 +101,8 @@ static int run_case(int argc, char** argv)
             pd::apply_surface_correction(model, body, bonds, pd::SurfaceCorrectionMethod::energy,
                                          {.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
             const pd::Elastic pmb_mat = pd::Elastic::from_E_nu(3 * mat.K * 0.5, 0.25);  // E = 1.5 K
-            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, 0.25, UniaxialLaw::pmb_continuum, pmb_mat, none);
+            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, 0.25, UniaxialLaw::pmb_continuum, pmb_mat, none,
+                        run.checkpoints(), stateless);
         } else if (name == "lps") {
             pd::LPS model({.material = mat, .dim = 3}, bonds);
             r = load_steps(model, UniaxialLaw::lps_continuum, none);

@@ -7,6 +7,7 @@
 #pragma once
 #include "problems/common/grips.hpp"
 #include "pd/core/timer.hpp"
+#include "pd/io/checkpoints.hpp"
 #include "problems/common/measure/bar_sections.hpp"
 #include "problems/common/measure/bar_stretch.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
@@ -49,13 +50,16 @@ struct Bar {
     pd::BarGauge gauge;  // gauge layers (0.5 l2 -+ delta), gauge length, the mid-length layers
 };
 
-// Load stepping by ADR; `commit` ends each converged step (Flanagan-Taylor), no-op otherwise.
-template <class Model, class Commit>
+// Load stepping by ADR; `commit` ends each converged step (Flanagan-Taylor), no-op otherwise. The
+// load steps are a restartable loop (io/checkpoints.hpp): its state is the converged fields of the
+// last two steps, the curve so far and model_state(ar) (Flanagan-Taylor: the committed state of
+// pd::LoadStep); each ADR solve starts afresh from u, so nothing else carries over between steps.
+template <class Model, class Commit, class ModelState>
 Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bonds& bonds, const Loading& load, double nu,
-            UniaxialLaw law, const pd::Elastic& mat, Commit commit)
+            UniaxialLaw law, const pd::Elastic& mat, Commit commit, pd::io::Checkpoints& cp, ModelState model_state)
 {
     const auto [strain, steps, tol, max_iter, safety] = load;
-    const pd::io::Timer timer;
+    pd::io::Timer timer;
     const pd::Body<3>& body = s.g.body;
     pd::DynamicRelaxation<3, Model> adr(body, bonds, model, bound);
     adr.safety = safety * pd::ref::max_tangent_ratio(law, mat.K, mat.G, 1 + strain);  // cover the stiffening
@@ -63,7 +67,11 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
     const double e = strain / steps;  // step 1 guess: uniform uniaxial field of the first step
     pd::uniaxial_bar_field(body, s.L, s.W, s.T, e * s.L, e, nu, pd::Grips::axial, u);
     Run run;
-    for (int k = 1; k <= steps; ++k) {
+    auto state = [&](pd::StateArchive& ar) {
+        ar("u", u), ar("u_old", u_old), ar.records("curve", run.curve), ar("converged", run.converged), ar("message", run.message);
+        timer.state(ar, "wall"), model_state(ar);
+    };
+    cp.loop(steps, state, [] {}, [&](long k) {
         const double U = strain * s.L * k / steps;
         pd::Boundary<3> bc;
         pd::grip_bar_ends(bc, s.g.left, s.g.right, pd::TimeFunction::constant(U), pd::Grips::axial);
@@ -77,7 +85,7 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
         if (!r.converged) {
             run.converged = false;
             run.message = "step " + std::to_string(k) + ": " + r.message;
-            break;
+            return false;
         }
         pd::add_fields(body.x, u, y);
         commit(bonds, y);
@@ -90,7 +98,7 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
             run.converged = false;
             run.message = "step " + std::to_string(k) + ": nonphysical gauge state (stretches " + std::to_string(p.lambda) + ", " +
                           std::to_string(p.mu_y) + ", " + std::to_string(p.mu_z) + ")";
-            break;
+            return false;
         }
         p.sigma = p.P / (p.mu_y * p.mu_z);
         p.eps_eq = pd::equivalent_strain(p.lambda, p.mu_y, p.mu_z);
@@ -103,7 +111,8 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
             p.P_ref = p.sigma_ref = p.eps_eq_ref = NAN;
         }
         run.curve.push_back(p);
-    }
+        return true;
+    });
     run.wall_s = timer.seconds();
     return run;
 }

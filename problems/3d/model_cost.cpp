@@ -103,7 +103,7 @@ static int run_case(int argc, char** argv)
     for (const char* o : {"n", "m", "steps", "repeats", "block"}) opt.require_at_least(o, 1);
     opt.require_at_least("C-hg", 0);
     run.parse(argc, argv);
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail("option --" + msg);
+    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     run.quick_default("n", 2);
     run.quick_default("steps", 20);
     run.quick_default("repeats", 2);

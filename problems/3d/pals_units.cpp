@@ -89,7 +89,7 @@ static int run_case(int argc, char** argv)
     for (const char* o : {"E", "rho", "length", "width", "thickness", "strain", "t-ramp", "spread-tol"}) opt.require_positive(o);
     opt.require_at_least("m", 1), opt.require_at_least("C-hg", 0);
     run.parse(argc, argv);
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail("option --" + msg);
+    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const std::vector<double> sfs = pd::io::list_option(opt, "sf", pd::io::ListValues::positive);
     const std::vector<double> dxs = pd::io::list_option(opt, "dx", pd::io::ListValues::positive);
     const bool product = opt.given("sf") || opt.given("dx");

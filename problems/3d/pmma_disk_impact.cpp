@@ -150,7 +150,7 @@ static int run_case(int argc, char** argv)
     run.parse(argc, argv);
     if (!(s_sd >= 0)) opt.fail("option --s-sd must be >= 0");
     if (!(r_clamp < 0.5 * D)) opt.fail("option --r-clamp must be below the disc radius");
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail("option --" + msg);
+    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const bool quick = run.quick();
     run.quick_default("dx", 2e-3);
     run.quick_default("t-end", 1.2e-3);

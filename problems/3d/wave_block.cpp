@@ -106,7 +106,7 @@ static int run_case(int argc, char** argv)
     for (const char* o : {"E", "rho", "dx", "length", "width", "pulse-width", "v0", "dt-factor", "t-end"}) opt.require_positive(o);
     opt.require_at_least("m", 1);
     run.parse(argc, argv);
-    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail("option --" + msg);
+    if (const std::string msg = pd::validate_elastic(E, nu, 3, pd::Plane::strain); !msg.empty()) opt.fail(msg);
     const bool quick = run.quick();
     run.quick_default("dx", 2e-3);
     run.quick_default("length", 0.3);

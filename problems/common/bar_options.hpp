@@ -25,7 +25,7 @@ struct BarOptions {
     // After opt.parse(): ends with the option message (exit 2) unless E, nu are admissible in 3D.
     void validate(Options& opt) const
     {
-        if (const std::string msg = validate_elastic(E, nu, 3, Plane::strain); !msg.empty()) opt.fail("option --" + msg);
+        if (const std::string msg = validate_elastic(E, nu, 3, Plane::strain); !msg.empty()) opt.fail(msg);
     }
 };
 

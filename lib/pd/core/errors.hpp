@@ -2,7 +2,8 @@
 // them and io/guarded_main.hpp may map them to exit statuses without including an integrator.
 //   Unstable: a run that became unstable (non-finite state, energy blow-up); names the step and
 //   the node (exit status 3). Invalid scenes and inputs throw std::invalid_argument (status 2).
-//   SolverFailure: an implicit solver could not continue the run (exit status 3, one line).
+//   SolverFailure: an implicit solver could not continue the run (exit status 3, one line);
+//   TimeScaleBeyondSolver: it could not even start on the input's time scale (status 2).
 //   NonFiniteResult: a headline result of a finished run is nan or inf (exit status 3 too: the run's
 //   numbers are not to be trusted, whether or not --check was given).
 //   Interrupted: a stop signal ended the run after a checkpoint (exit status 128 + signal).
@@ -30,6 +31,13 @@ struct SolverFailure : std::runtime_error {
 
 struct NonFiniteResult : std::runtime_error {
     using std::runtime_error::runtime_error;
+};
+
+// A solver that cannot take its first step on the time scale the input sets (CVODE at t0): bad
+// input, exit status 2, with the options that set that scale when the driver names them
+// (io::Case::time_scale_set_by).
+struct TimeScaleBeyondSolver : std::invalid_argument {
+    using std::invalid_argument::invalid_argument;
 };
 
 // A run stopped by a signal (SIGINT, SIGTERM) after its checkpoint was written (io/checkpoints.hpp);

@@ -29,7 +29,7 @@ inline double kappa_dim(const Elastic& m, int dim, Plane plane)
 }
 
 // Checks E > 0 and -1 < nu < 1/2 (the 3D material behind every reduction; 1D needs only E). Returns an empty string when
-// valid, else a one-line message naming the parameter.
+// valid, else a one-line message naming the parameter as the drivers' option (--E, --nu).
 std::string validate_elastic(double E, double nu, int dim, Plane plane);
 
 }  // namespace pd

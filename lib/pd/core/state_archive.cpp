@@ -32,6 +32,12 @@ void StateArchive::fail(const std::string& what) const
     throw std::invalid_argument("checkpoint " + (path_.empty() ? std::string("(in memory)") : path_.string()) + ": " + what);
 }
 
+void StateArchive::put(const std::string& name, Entry entry)
+{
+    if (!entries_.emplace(name, std::move(entry)).second)
+        throw std::logic_error("checkpoint: two parts of the run save an entry named '" + name + "'");
+}
+
 const StateArchive::Entry& StateArchive::find(const std::string& name, Type type) const
 {
     const auto it = entries_.find(name);
@@ -63,7 +69,7 @@ static void visit_vector(StateArchive::Mode mode, std::vector<T>& v, std::string
         std::string bytes;                                                                                 \
         if (!saving()) bytes = find(name, TYPE).bytes;                                                     \
         visit_vector(mode_, v, bytes, name, [this](const std::string& w) { fail(w); });                    \
-        if (saving()) entries_[name] = {TYPE, std::move(bytes)};                                           \
+        if (saving()) put(name, {TYPE, std::move(bytes)});                                                 \
     }
 PD_ARCHIVE_VECTOR(double, Type::real)
 PD_ARCHIVE_VECTOR(std::uint8_t, Type::byte)
@@ -80,7 +86,7 @@ void StateArchive::operator()(const std::string& name, double& x)
 void StateArchive::operator()(const std::string& name, long& x)
 {
     if (saving()) {
-        entries_[name] = {Type::integer, to_bytes(static_cast<std::int64_t>(x))};
+        put(name, {Type::integer, to_bytes(static_cast<std::int64_t>(x))});
         return;
     }
     const Entry& e = find(name, Type::integer);
@@ -92,7 +98,7 @@ void StateArchive::operator()(const std::string& name, long& x)
 
 void StateArchive::operator()(const std::string& name, std::string& s)
 {
-    if (saving()) entries_[name] = {Type::text, s};
+    if (saving()) put(name, {Type::text, s});
     else s = find(name, Type::text).bytes;
 }
 

@@ -18,9 +18,11 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace pd {
@@ -103,6 +105,23 @@ public:
         for (std::size_t i = 0; i < v.size(); ++i) std::copy(flat.begin() + i * n, flat.begin() + (i + 1) * n, v[i].data());
     }
 
+    // A vector of plain records (trivially copyable structs of numbers), stored as their bytes.
+    template <class T>
+        requires std::is_trivially_copyable_v<T>
+    void records(const std::string& name, std::vector<T>& v)
+    {
+        std::vector<std::uint8_t> bytes;
+        if (saving()) {
+            bytes.resize(v.size() * sizeof(T));
+            if (!v.empty()) std::memcpy(bytes.data(), v.data(), bytes.size());
+        }
+        (*this)(name, bytes);
+        if (saving()) return;
+        if (bytes.size() % sizeof(T) != 0) fail("entry '" + name + "' is cut");
+        v.resize(bytes.size() / sizeof(T));
+        if (!v.empty()) std::memcpy(v.data(), bytes.data(), bytes.size());
+    }
+
 private:
     enum class Type : std::uint8_t { real = 1, byte = 2, integer = 3, text = 4 };
     struct Entry {
@@ -114,6 +133,7 @@ private:
     std::map<std::string, Entry> entries_;
 
     const Entry& find(const std::string& name, Type type) const;
+    void put(const std::string& name, Entry entry);  // saving; a name saved twice is a logic_error
 };
 
 }  // namespace pd

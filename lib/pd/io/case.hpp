@@ -22,6 +22,7 @@
 #include "pd/io/checkpoints.hpp"
 #include "pd/io/checks.hpp"
 #include "pd/io/csv.hpp"
+#include "pd/io/guarded_main.hpp"
 #include "pd/io/options.hpp"
 #include "pd/core/errors.hpp"
 #include "pd/core/parallel.hpp"
@@ -65,6 +66,10 @@ public:
         parse(argc, argv);
         start();
     }
+    // The options that set the time scale of the driver's heat or ODE problem ("--k, --rho, --c"),
+    // named when CVODE cannot take its first step on it (guarded_main, exit status 2).
+    void time_scale_set_by(const std::string& options) { time_scale_options() = options; }
+
     // A driver whose time loops save their state (io/checkpoints.hpp) calls this before parse():
     // it adds --checkpoint-every, --resume and --stop-after.
     void allow_checkpoints() { checkpoints_allowed_ = true; }
@@ -76,7 +81,7 @@ public:
     {
         add_standard(opt, default_out_, out_help_);
         if (checkpoints_allowed_) {
-            opt.add_int("checkpoint-every", 0, "steps between checkpoints of each time loop (0: only when stopped by a signal)");
+            opt.add_int("checkpoint-every", 0, "also a checkpoint every N steps of each time loop (0: at the end of each loop and when stopped)");
             opt.add_flag("resume", "continue the stopped run whose checkpoints are in --out (same options)");
             opt.add_int("stop-after", 0, "stop after this many steps, with a checkpoint, as on SIGINT (0: never)");
             for (const char* o : {"checkpoint-every", "stop-after"}) opt.require_at_least(o, 0);
@@ -154,8 +159,8 @@ public:
     // is written; a quantity the run does not measure is a not_measured row (csv.hpp).
     [[gnu::format(printf, 2, 3)]] int finish(const char* headline, ...)
     {
-        checkpoints_.remove_all();  // the run is complete
         if (!rows_.empty()) write_summary(out_ / "summary.csv", rows_);
+        checkpoints_.remove_all();  // the run is complete
         for (const SummaryRow& r : rows_)
             if (r.measured && !std::isfinite(r.value))
                 throw NonFiniteResult("non-finite result: " + r.quantity + " = " + (std::isnan(r.value) ? "nan" : r.value > 0 ? "inf" : "-inf") +

@@ -3,12 +3,14 @@
 // options of the run that wrote it.
 //
 // A driver that calls Case::allow_checkpoints() before parsing gets three options:
-//   --checkpoint-every N   a checkpoint every N steps of each time loop (0: only when stopped)
+//   --checkpoint-every N   also a checkpoint every N steps of each time loop (0: only at the end of
+//                          each loop and when stopped)
 //   --resume               continue the run whose checkpoints are in --out (same options)
 //   --stop-after N         stop after N steps of this process as on SIGINT (0: never), e.g. for a
 //                          batch slot of known length
-// and wraps each of its time loops (one per dx, seed or table cell: the driver's k-th loop keeps its
-// checkpoint in <out>/checkpoint_<k>.pdstate) with one state function used in both directions:
+// and runs each of its time loops (one per dx, seed, model or table cell: the driver's k-th loop
+// keeps its checkpoint in <out>/checkpoint_<k>.pdstate) through loop(), with one state function
+// used in both directions:
 //
 //     auto state = [&](pd::StateArchive& ar) { sim.state(ar), tips.state(ar, "tips"), csv.state(ar); };
 //     run.checkpoints().loop(steps, state, [&] { sim.start(); }, [&](long n) {
@@ -17,15 +19,15 @@
 //         return true;                                    // false: the loop ends here
 //     });
 //
-// (loop() is begin(state), which loads the state under --resume; start() from step 0; the steps
-// with after_step(n, state) after each; end(n, state).)
-// SIGINT or SIGTERM stops a loop after the step in progress: after_step writes the checkpoint, and
-// the CSV files are closed as the driver unwinds (pd::Interrupted, exit status 128 + signal; a
-// second signal ends the process at once). end() writes the loop's final state, so that a resumed
+// SIGINT or SIGTERM stops a loop after the step in progress with a checkpoint (pd::Interrupted,
+// exit status 128 + signal; a second signal ends the process at once, e.g. during a long set-up,
+// where the first is only seen after the first step); the files still open keep their ".part"
+// names, the finished ones theirs. The end of each loop stores its final state, so that a resumed
 // driver redoes only the measurements of the loops that had finished (they take no step) and goes
 // on with the one that was stopped: its files then equal those of the uninterrupted run (wall times
-// apart). A CsvWriter that a loop fills is part of its state (CsvWriter::state). Case::finish
-// removes the checkpoints of a completed driver; a new run into the folder removes stale ones.
+// apart; params.csv records --resume). A CsvWriter that a loop fills is part of its state
+// (CsvWriter::state). Case::finish removes the checkpoints of a completed driver, a failing driver
+// its own, a new run into the folder stale ones.
 #pragma once
 #include "pd/core/errors.hpp"
 #include "pd/core/state_archive.hpp"
@@ -33,6 +35,7 @@
 #include "pd/io/options.hpp"
 
 #include <csignal>
+#include <exception>
 #include <filesystem>
 #include <initializer_list>
 #include <sstream>
@@ -93,15 +96,18 @@ inline std::string first_difference(const std::string& saved, const std::string&
     }
 }
 
-// Where a time loop starts: step 0 (a new loop) or the checkpoint's step; complete: the loop had
-// finished (end() was reached), so it takes no step and only its measurements are redone.
-struct Resumed {
-    long step = 0;
-    bool complete = false;
-};
-
 class Checkpoints {
 public:
+    Checkpoints() = default;
+    Checkpoints(const Checkpoints&) = delete;
+    Checkpoints& operator=(const Checkpoints&) = delete;
+    // A driver that fails (an unstable run, a bad input found late, a write error) leaves no
+    // checkpoint behind: there is nothing to resume. A stop (pd::Interrupted) keeps them.
+    ~Checkpoints()
+    {
+        if (std::uncaught_exceptions() > 0 && !stopping_to_resume()) remove_all();
+    }
+
     // Set by Case::start: every (steps, 0 = none), resume, stop_after (steps of this process, 0 =
     // never), the output folder and the options' fingerprint. Installs the signal handlers.
     void configure(long every, bool resume, long stop_after, const std::filesystem::path& out, std::string fingerprint)
@@ -114,57 +120,16 @@ public:
             throw std::invalid_argument("option --resume: no checkpoint in '" + out_.string() + "' (" + file(0).filename().string() + ")");
         read(0);  // refused before any file in the folder changes
     }
-    bool enabled() const { return enabled_; }
 
-    // Begins the driver's next time loop: under --resume, and when this loop has a checkpoint,
-    // loads state(ar) from it (after checking that the options are this run's).
-    template <class State>
-    Resumed begin(State&& state)
-    {
-        Resumed at;
-        loop_ = next_++;
-        if (!enabled_) return at;
-        OutputManifest::record(file(loop_));  // a later new run into the folder removes it
-        if (!resume_ || !std::filesystem::exists(file(loop_))) return at;
-        StateArchive ar = read(loop_);
-        try {
-            ar("driver.step", at.step), ar("driver.complete", at.complete);
-            state(ar);
-        } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument("option --resume: " + std::string(e.what()));
-        }
-        return at;
-    }
-
-    // After step n of the current loop: a checkpoint on the cadence; on a stop signal (or after
-    // --stop-after steps) a checkpoint, then pd::Interrupted.
-    template <class State>
-    void after_step(long n, State&& state)
-    {
-        if (!enabled_) return;
-        ++steps_;
-        int sig = stop_signal;
-        if (sig == 0 && stop_after_ > 0 && steps_ >= stop_after_) sig = SIGINT;
-        if ((every_ > 0 && n % every_ == 0) || sig != 0) write(n, false, state);
-        if (sig != 0)
-            throw Interrupted("stopped by " + std::string(signal_name(sig)) + (stop_signal == 0 ? " (--stop-after)" : "") + " after step " +
-                                  std::to_string(n) + " of time loop " + std::to_string(loop_) + "; checkpoints in " + out_.string() +
-                                  " (continue with the same options and --resume)",
-                              sig);
-    }
-
-    // The end of the current loop at step n: its final state, for a resume of a later loop.
-    template <class State>
-    void end(long n, State&& state)
-    {
-        if (enabled_) write(n, true, state);
-    }
-
-    // One restartable time loop in a call: begin(state); start() when it starts from step 0; step(n)
-    // for n = first + 1, ..., steps (a false return ends the loop after that step: a loop that ends
-    // on a condition), after_step() after each and end() after the last. Returns the last step's
-    // number. An exception from step() (pd::Unstable) leaves no final checkpoint: a resumed driver
-    // repeats the loop from its last checkpoint, deterministically to the same end.
+    // One restartable time loop (header): under --resume, and when this loop has a checkpoint,
+    // state(ar) loads it; start() when the loop starts from step 0; step(n) for n = first + 1, ...,
+    // steps (a false return ends the loop after that step: a loop that ends on a condition); after
+    // each step a checkpoint on the cadence, or on a stop signal (or after --stop-after steps) a
+    // checkpoint and pd::Interrupted; after the last step the loop's final state. A loop whose final
+    // state is loaded takes no step (its measurements are redone). Returns the last step's number.
+    // An exception from step() (pd::Unstable) leaves no final state: a resumed driver repeats the
+    // loop from its last checkpoint, deterministically to the same end. Without Case::allow_checkpoints
+    // (not configured) it is a plain loop.
     template <class State, class Start, class Step>
     long loop(long steps, State&& state, Start&& start, Step&& step)
     {
@@ -174,25 +139,74 @@ public:
         long n = at.step;
         while (n < steps) {
             if (!step(++n)) break;
-            after_step(n, state);
+            after_step(at, n, state);
         }
-        end(n, state);
+        end(at, n, state);
         return n;
     }
 
     // The driver has finished: its checkpoints are removed.
     void remove_all() const
     {
+        if (!enabled_) return;
         std::error_code ec;
-        for (int k = 0; k < next_; ++k) std::filesystem::remove(file(k), ec);
+        for (int k = 0; k < next_; ++k) {
+            std::filesystem::path part = file(k);
+            part += ".part";
+            std::filesystem::remove(file(k), ec), std::filesystem::remove(part, ec);
+        }
     }
 
 private:
     bool enabled_ = false, resume_ = false;
     long every_ = 0, stop_after_ = 0, steps_ = 0;
-    int loop_ = -1, next_ = 0;
+    int next_ = 0;
     std::filesystem::path out_;
     std::string fingerprint_;
+
+    // The pieces of loop(): begin() loads the state and says where the loop starts; after_step()
+    // after each step n; end() after the last.
+    struct Resumed {
+        int loop = 0;
+        long step = 0;          // 0: from the start
+        bool complete = false;  // the loop had ended: take no step
+    };
+    template <class State>
+    Resumed begin(State&& state)
+    {
+        Resumed at{next_++};
+        if (!enabled_) return at;
+        OutputManifest::record(file(at.loop));  // a later new run into the folder removes it
+        if (!resume_ || !std::filesystem::exists(file(at.loop))) return at;
+        StateArchive ar = read(at.loop);
+        try {
+            ar("driver.step", at.step), ar("driver.complete", at.complete);
+            state(ar);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument("option --resume: " + std::string(e.what()));
+        }
+        return at;
+    }
+    template <class State>
+    void after_step(const Resumed& at, long n, State&& state)
+    {
+        if (!enabled_) return;
+        ++steps_;
+        int sig = stop_signal;
+        if (sig == 0 && stop_after_ > 0 && steps_ >= stop_after_) sig = SIGINT;
+        if ((every_ > 0 && n % every_ == 0) || sig != 0) write(at.loop, n, false, state);
+        if (sig == 0) return;
+        stopping_to_resume() = true;  // the files still open keep their ".part" names (csv.hpp)
+        throw Interrupted("stopped by " + std::string(signal_name(sig)) + (stop_signal == 0 ? " (--stop-after)" : "") + " after step " +
+                              std::to_string(n) + " of time loop " + std::to_string(at.loop) + "; checkpoints in " + out_.string() +
+                              " (continue with the same options and --resume)",
+                          sig);
+    }
+    template <class State>
+    void end(const Resumed& at, long n, State&& state)
+    {
+        if (enabled_) write(at.loop, n, true, state);
+    }
 
     std::filesystem::path file(int k) const { return out_ / ("checkpoint_" + std::to_string(k) + ".pdstate"); }
 
@@ -213,14 +227,14 @@ private:
     }
 
     template <class State>
-    void write(long n, bool complete, State&& state) const
+    void write(int k, long n, bool complete, State&& state) const
     {
         StateArchive ar;
         std::string options = fingerprint_;
         ar("driver.options", options);
         ar("driver.step", n), ar("driver.complete", complete);
         state(ar);
-        ar.write(file(loop_));
+        ar.write(file(k));
     }
 };
 

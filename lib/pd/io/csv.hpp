@@ -23,12 +23,14 @@
 #include "pd/core/state_archive.hpp"
 
 #include <array>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <concepts>
 #include <cstdint>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -188,10 +190,18 @@ private:
     }
 };
 
+// Set when a run stops to be resumed (io/checkpoints.hpp, pd::Interrupted): a file still open
+// while the stop unwinds is not complete, so it keeps its ".part" name (the resumed run rewrites it).
+inline std::atomic<bool>& stopping_to_resume()
+{
+    static std::atomic<bool> flag{false};
+    return flag;
+}
+
 // A file written under a temporary name (`path` + ".part") that takes its own name only when it is
 // complete: at close(), or when the writer is destroyed (also while an exception unwinds, e.g. an
-// unstable run, so the rows written so far are kept). A run that is killed leaves the ".part"
-// file, never a cut file under the final name.
+// unstable run, so the rows written so far are kept; but not while a run stops to be resumed). A
+// run that is killed leaves the ".part" file, never a cut file under the final name.
 class PendingFile {
 public:
     PendingFile() = default;
@@ -208,7 +218,10 @@ public:
         o.part_.clear();
         return *this;
     }
-    ~PendingFile() { publish(); }
+    ~PendingFile()
+    {
+        if (std::uncaught_exceptions() == 0 || !stopping_to_resume()) publish();
+    }
     const std::filesystem::path& part() const { return part_; }
     // Renames the temporary file into place (once); false if that failed.
     bool publish() noexcept

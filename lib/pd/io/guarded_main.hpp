@@ -15,8 +15,17 @@
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
+#include <string>
 
 namespace pd::io {
+
+// The options that set the time scale of a driver's problem (Case::time_scale_set_by), named when a
+// solver cannot take its first step on it (pd::TimeScaleBeyondSolver).
+inline std::string& time_scale_options()
+{
+    static std::string options;
+    return options;
+}
 
 template <class Fn>
 int guarded_main(const char* program, Fn&& fn)
@@ -35,6 +44,10 @@ int guarded_main(const char* program, Fn&& fn)
     } catch (const Interrupted& e) {
         std::fprintf(stderr, "%s: %s\n", program, e.what());
         return 128 + e.signal;
+    } catch (const TimeScaleBeyondSolver& e) {
+        const std::string& o = time_scale_options();
+        std::fprintf(stderr, "%s: error: %s%s\n", program, o.empty() ? "" : ("options " + o + ": ").c_str(), e.what());
+        return 2;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "%s: error: %s\n", program, e.what());
         return 2;

@@ -76,14 +76,14 @@ void check(int flag, const char* what)
 }  // namespace
 
 // A failed integration: at the initial time the solver cannot take a single step, so the input's
-// time scale (material constants, sizes) is out of its reach: std::invalid_argument (status 2);
+// time scale (material constants, sizes) is out of its reach: TimeScaleBeyondSolver (status 2);
 // later it is a run that could not be continued: SolverFailure (status 3). One line each.
 void CvodeBdf::fail(int flag, const char* what) const
 {
     const std::string text = std::string("CVODE ") + what + " failed (flag " + std::to_string(flag) + ")" +
                              (impl_->last_message.empty() ? "" : ": " + impl_->last_message);
     if (t_ == impl_->t0)
-        throw std::invalid_argument(text + " -- at the initial time: the time scale of the input (material constants, sizes) is beyond the solver");
+        throw TimeScaleBeyondSolver(text + " -- at the initial time: the time scale of the input (material constants, sizes) is beyond the solver");
     throw SolverFailure(text);
 }
 

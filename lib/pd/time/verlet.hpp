@@ -109,7 +109,7 @@ public:
     }
 
     // A checkpoint between steps (core/state_archive.hpp): state(ar) into a saving archive after any
-    // step; state(ar) from a loading archive (or resume(ar)) instead of start() on an Explicit set up
+    // step; state(ar) from a loading archive instead of start() on an Explicit set up
     // the same way (scene, damage rule, density, boundary) continues the run bit for bit as the
     // uninterrupted one.
     void state(StateArchive& ar)
@@ -121,7 +121,6 @@ public:
         ar("explicit.external_work", external_work_), ar("explicit.initial_energy", initial_energy_);
         scene.state(ar);
     }
-    void resume(StateArchive& ar) { state(ar); }
 
     void step(double dt)
     {
@@ -206,7 +205,7 @@ private:
     double energy_floor_ = 0;                            // [J]
     static constexpr double roundoff_speed = 1e-10;      // [m/s], see header
 
-    // What start() and resume() share: the constrained components and the energy guard's floor.
+    // What start() and a loading state() share: the constrained components and the energy guard's floor.
     void prepare()
     {
         constrained_.assign(scene.body.size() * D, 0);
