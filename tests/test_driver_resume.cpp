@@ -7,6 +7,7 @@
 // and a resume change no result, not the results' accuracy (the drivers' own tests check those).
 #include "pd/io/csv.hpp"
 
+#include "pd_run_harness.hpp"
 #include "scratch_dir.hpp"
 
 #include <gtest/gtest.h>
@@ -25,19 +26,12 @@
 namespace {
 
 namespace fs = std::filesystem;
+using pd_test::slurp;
 
 struct Outcome {
     int status = -1;
     std::string err;
 };
-
-std::string slurp(const fs::path& p)
-{
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 Outcome run(const std::string& exe, const std::string& args, const fs::path& out)
 {

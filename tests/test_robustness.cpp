@@ -43,6 +43,7 @@ extern char** environ;
 namespace {
 
 namespace fs = std::filesystem;
+using pd_test::slurp;
 using Clock = std::chrono::steady_clock;
 
 constexpr int workers = 4;                               // processes at once (2 cores: most runs wait in parse or are killed)
@@ -57,14 +58,6 @@ struct Proc {
     std::chrono::milliseconds limit{0};  // this run's own limit (0: the caller's)
     std::string err;
 };
-
-std::string slurp(const fs::path& p)
-{
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 std::string command_line(const std::vector<std::string>& argv)
 {
