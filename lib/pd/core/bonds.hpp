@@ -58,9 +58,15 @@ struct Bonds {
     }
 };
 
-// The family traversal in family order, for set-up and bookkeeping that need no vector path (the
-// force, dilatation and heat passes take bond_loop.hpp's lane_sums): bond(k, j) for every intact
-// bond k of node i (partner j), k ascending.
+// The family traversals in family order, for set-up and bookkeeping that need no vector path (the
+// force, dilatation and heat passes take bond_loop.hpp's lane_sums): bond(k, j) for every bond k of
+// node i (partner j), k ascending; for_intact_bonds skips the broken ones, for_family visits them
+// too (set-up at the reference, histories kept on broken bonds, damage bookkeeping).
+template <class Bond>
+inline void for_family(const Bonds& b, std::size_t i, Bond&& bond)
+{
+    for (std::int64_t k = b.begin(i); k < b.end(i); ++k) bond(k, b.partner[k]);
+}
 template <class Bond>
 inline void for_intact_bonds(const Bonds& b, std::size_t i, Bond&& bond)
 {

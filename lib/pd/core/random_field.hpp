@@ -123,8 +123,8 @@ inline std::vector<double> bond_field(const RandomSpec& spec, const Bonds& b, Bo
     const std::uint64_t N = b.nodes();
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i)
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            const std::uint64_t j = static_cast<std::uint64_t>(b.partner[k]);
+        for_family(b, i, [&](std::int64_t k, int partner) {
+            const std::uint64_t j = static_cast<std::uint64_t>(partner);
             const std::uint64_t lo = std::min<std::uint64_t>(i, j), hi = std::max<std::uint64_t>(i, j);
             switch (rule) {
             case BondRule::min: s[k] = std::min(node[i], node[j]); break;
@@ -132,7 +132,7 @@ inline std::vector<double> bond_field(const RandomSpec& spec, const Bonds& b, Bo
             case BondRule::mean: s[k] = 0.5 * (node[i] + node[j]); break;
             case BondRule::bond: s[k] = spec(lo * N + hi); break;  // unordered pair id
             }
-        }
+        });
     return s;
 }
 

@@ -123,10 +123,10 @@ inline std::vector<double> point_damage(const Bonds& b)
     if (!b.has_damage()) return phi;
     for (std::size_t i = 0; i < b.nodes(); ++i) {
         double all = 0, kept = 0;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+        for_family(b, i, [&](std::int64_t k, int) {
             all += b.volume[k];
             kept += b.intact[k] * b.volume[k];
-        }
+        });
         phi[i] = all > 0 ? 1 - kept / all : 0;
     }
     return phi;

@@ -94,11 +94,10 @@ struct CriticalMicropotential {
 #pragma omp parallel for schedule(static) reduction(+ : broken) if (n >= parallel_min_nodes)
         for (long i = 0; i < n; ++i) {
             if (w_max_[i] < w_c || (!no_fail.empty() && no_fail[i])) continue;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const int j = b.partner[k];
-                if (j < i || (!no_fail.empty() && no_fail[j]) || w_of(k) < w_c) continue;
+            for_family(b, i, [&](std::int64_t k, int j) {
+                if (j < i || (!no_fail.empty() && no_fail[j]) || w_of(k) < w_c) return;
                 broken += b.break_pair(k);  // the reverse half lies in node j's range, whose thread writes only its bonds to j' > j
-            }
+            });
         }
         return broken;
     }

@@ -44,11 +44,9 @@ inline long break_detached_bonds(Bonds& b, const std::vector<std::uint8_t>& deta
     long broken = 0;
     for (std::size_t i = 0; i < detached.size(); ++i) {
         if (!detached[i] || (!no_fail.empty() && no_fail[i])) continue;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            const int j = b.partner[k];
-            if (!no_fail.empty() && no_fail[j]) continue;
-            broken += b.break_pair(k);
-        }
+        for_family(b, i, [&](std::int64_t k, int j) {
+            if (no_fail.empty() || !no_fail[j]) broken += b.break_pair(k);
+        });
     }
     return broken;
 }

@@ -65,18 +65,18 @@ struct Agwai {
         if (p.correction != ThermalCorrection::none)
             for (std::size_t i = 0; i < b.nodes(); ++i) {
                 double S = 0;
-                for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                for_family(b, i, [&](std::int64_t k, int j) {
                     double ex = 0;
-                    for (int d = 0; d < D; ++d) ex += body.x.c[d][b.partner[k]] - body.x.c[d][i];
+                    for (int d = 0; d < D; ++d) ex += body.x.c[d][j] - body.x.c[d][i];
                     S += b.volume[k] * ex * ex / b.length[k];
-                }
+                });
                 tcf[i] = S > 0 ? M1 / S : 1.0;
             }
         for (std::size_t i = 0; i < b.nodes(); ++i)
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const double f = p.correction == ThermalCorrection::pair_mean ? 0.5 * (tcf[i] + tcf[b.partner[k]]) : tcf[i];
+            for_family(b, i, [&](std::int64_t k, int j) {
+                const double f = p.correction == ThermalCorrection::pair_mean ? 0.5 * (tcf[i] + tcf[j]) : tcf[i];
                 coef[k] = kappa1 * f * b.volume[k] / b.length[k];
-            }
+            });
     }
 
     double bond_heat(std::size_t, std::int64_t k, int, double dtheta) const { return coef[k] * dtheta; }

@@ -64,12 +64,11 @@ void add_bond_operator(const Bonds& b, std::vector<Eigen::Triplet<double>>& t, C
 {
     for (std::size_t i = 0; i < b.nodes(); ++i) {
         double diag = 0;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            if (b.has_damage() && !b.intact[k]) continue;
+        for_intact_bonds(b, i, [&](std::int64_t k, int j) {
             const double ck = c(i, k);
-            t.emplace_back(int(i), b.partner[k], ck);
+            t.emplace_back(int(i), j, ck);
             diag -= ck;
-        }
+        });
         t.emplace_back(int(i), int(i), diag);
     }
 }

@@ -80,7 +80,7 @@ void chunk_node_data(const TranslatedRuns& runs, const Bonds& b, const std::vect
     block_read.assign(n, 0);
     for (int i : runs.rest) {
         block_read[i] = 1;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) block_read[b.partner[k]] = 1;
+        for_family(b, i, [&](std::int64_t, int j) { block_read[j] = 1; });
     }
     regular.assign(runs.chunk_start.size(), 1);
     for (std::size_t q = 0; q < regular.size(); ++q)

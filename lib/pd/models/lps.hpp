@@ -215,8 +215,9 @@ private:
         const double a_D = detail::scf_shear_constant(dim);
         for (std::size_t i = 0; i < b.nodes(); ++i) {
             m[i] = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+            for_family(b, i, [&](std::int64_t k, int) {
                 if (!skip_broken || b.intact[k]) m[i] += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
+            });
             const double inv_m = m[i] > 0 ? 1.0 / m[i] : 0.0;  // isolated node: no force
             p_coef[i] = dim * kappa * inv_m;
             alpha[i] = a_D * G * inv_m;

@@ -138,8 +138,7 @@ void PALS::recompute(const Bonds& b)
     };
     parallel_for(b.nodes(), [&](std::size_t i) {
         double ms = 0;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            const int j = b.partner[k];
+        for_family(b, i, [&](std::int64_t k, int j) {
             const Vec<3> h = xi_hat(i, j);
             const double r = b.length[k];
             const double V = b.volume[k] / d3;  // omega V = omega_hat V_hat / delta^2
@@ -149,7 +148,7 @@ void PALS::recompute(const Bonds& b)
             s_i[k] = 2 * G * si * V / (delta * delta);
             s_j[k] = 2 * G * sigma_hat(j, h, r) * V / (delta * delta);
             if (!b.has_damage() || b.intact[k]) ms += si * dot(h, h) * V;
-        }
+        });
         m_sigma[i] = ms;
     });
 #ifdef PD_CHUNK_WIDTH

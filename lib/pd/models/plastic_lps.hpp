@@ -74,22 +74,22 @@ struct PlasticLPS {
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double th = lps.theta[i] / 3;
             double sum = 0;  // sum omega e_de^2 V [m^5] over intact bonds
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (damaged && !b.intact[k]) { tdev[k] = 0; continue; }
+            for_family(b, i, [&](std::int64_t k, int) {
+                if (damaged && !b.intact[k]) { tdev[k] = 0; return; }
                 const double e = deviatoric_extension(b, y, i, k, th, edp_c);
                 tdev[k] = e;  // e_de until the return below
                 sum += lps.wV[k] * e * e;
-            }
+            });
             const double trial = std::sqrt(6 * G * 0.5 * lps.alpha[i] * sum);  // sqrt(6 G W_d) (5.36)
             const laws::ScalarReturn r = pts.scalar_return(i, G, trial);
             const double scale = r.plastic ? r.sigma_eff / trial : 1.0;             // (5.46)
             const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;        // (5.40)
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (damaged && !b.intact[k]) { edp[k] = edp_c[k]; continue; }
+            for_family(b, i, [&](std::int64_t k, int) {
+                if (damaged && !b.intact[k]) { edp[k] = edp_c[k]; return; }
                 const double e = tdev[k];
                 tdev[k] = lps.alpha[i] * scale * e;
                 edp[k] = edp_c[k] + flow * e;
-            }
+            });
         });
     }
 

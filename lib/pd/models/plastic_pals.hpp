@@ -76,24 +76,24 @@ struct PlasticPALS {
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double th = pals.theta[i] / 3;
             double wd = 0, sx = 0;  // 2 W_d = sum 2G sigma e_de^2 V [Pa]; sum 2G sigma |xi| e_de V [Pa] (intact bonds)
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (damaged && !b.intact[k]) { t[k] = 0; continue; }
+            for_family(b, i, [&](std::int64_t k, int) {
+                if (damaged && !b.intact[k]) { t[k] = 0; return; }
                 const double e = deviatoric_extension(b, y, i, k, th, edp_c);
                 t[k] = e;  // e_de until the return below
                 wd += pals.s_i[k] * e * e;
                 sx += pals.s_i[k] * b.length[k] * e;
-            }
+            });
             const double trial = std::sqrt(6 * G * 0.5 * std::max(wd, 0.0));  // sqrt(6 G W_d) (5.55)
             const laws::ScalarReturn r = pts.scalar_return(i, G, trial);
             const double scale = r.plastic ? r.sigma_eff / trial : 1.0;
             const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;   // (5.58)
             const double P = pals.K * pals.theta[i] - scale * sx / 3;            // K theta - (2G/3)(sigma x)•e_de_np1
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                if (damaged && !b.intact[k]) { edp[k] = edp_c[k]; continue; }
+            for_family(b, i, [&](std::int64_t k, int) {
+                if (damaged && !b.intact[k]) { edp[k] = edp_c[k]; return; }
                 const double e = t[k];
                 t[k] = (P * pals.w_i[k] * b.length[k] + scale * pals.s_i[k] * e) / b.volume[k];  // (4.21)
                 edp[k] = edp_c[k] + flow * e;
-            }
+            });
         });
     }
 

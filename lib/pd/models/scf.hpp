@@ -98,8 +98,9 @@ std::vector<double> shear_correction_factor(const Bonds& b, const Field<D>& x, i
         parallel_for(b.nodes(), [&](std::size_t i) {
             double m = 0;  // weighted volume over the whole family or the intact bonds, as LPS
             const bool skip_broken = intact_m && b.has_damage();
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+            for_family(b, i, [&](std::int64_t k, int) {
                 if (!skip_broken || b.intact[k]) m += b.omega[k] * b.length[k] * b.length[k] * b.volume[k];
+            });
             if (!(m > 0)) return;
             double N_max = 0;
             for (int md = 0; md < modes; ++md)

@@ -90,15 +90,15 @@ std::array<double, D> full_family_energy(const PMB& pmb, const Body<D>& body, co
                                     "beyond it (exact-area partial volumes); use Reference::classical");
     std::map<long, double> coef_of;  // |n|^2 -> c omega beta V_j / |xi|
     for (std::size_t i = 0; i < bonds.nodes(); ++i)
-        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
-            const Vec<D> xi = body.x[bonds.partner[k]] - body.x[i];
+        for_family(bonds, i, [&](std::int64_t k, int j) {
+            const Vec<D> xi = body.x[j] - body.x[i];
             const long key = std::lround(dot(xi, xi) / (dx * dx));
             const auto [it, fresh] = coef_of.emplace(key, pmb.coef[k]);
             // 1e-9: same |n|^2 gives the same coefficient up to the round-off of |xi| (~1e-15).
             if (!fresh && std::abs(it->second - pmb.coef[k]) > 1e-9 * std::abs(it->second))
                 throw std::invalid_argument("surface correction: bond coefficients differ at equal |xi| (non-uniform lattice "
                                             "or already scaled model); use Reference::classical on the unscaled model");
-        }
+        });
     std::array<double, D> W{};
     for (const auto& n : full_family_offsets(bonds.delta, dx, D)) {
         Vec<D> xi;
@@ -139,8 +139,7 @@ void energy_method_factors(SurfaceFactors<D>& out, const Body<D>& body, const Bo
     }
     out.G.resize(bonds.size());  // bond factors, symmetric in i and j term by term
     parallel_for(bonds.nodes(), [&](std::size_t i) {
-        for (std::int64_t k = bonds.begin(i); k < bonds.end(i); ++k) {
-            const int j = bonds.partner[k];
+        for_family(bonds, i, [&](std::int64_t k, int j) {
             const Vec<D> xi = body.x[j] - body.x[i];
             const double L2 = dot(xi, xi);
             double sum = 0;
@@ -149,7 +148,7 @@ void energy_method_factors(SurfaceFactors<D>& out, const Body<D>& body, const Bo
                 sum += xi[a] * xi[a] / L2 / (Ga * Ga);                  // (n_k / G_k,ij)^2
             }
             out.G[k] = 1.0 / std::sqrt(sum);  // G_ij = [sum_k (n_k / G_k,ij)^2]^(-1/2)
-        }
+        });
     });
 }
 

@@ -96,18 +96,18 @@ struct ViscoelasticLPS {
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double alpha_b = gamma_b * lps.alpha[i];  // (7.22) [Pa/m^5 in 3D]
             double Di = 0;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+            for_family(b, i, [&](std::int64_t k, int j) {
                 if (damaged && !b.intact[k]) {  // a broken bond keeps its history and carries no force
                     ed_t[k] = ed_c[k], edb_t[k] = edb_c[k], tv[k] = 0;
-                    continue;
+                    return;
                 }
                 const double L = b.length[k];
-                const double ed = norm(y[b.partner[k]] - y[i]) - L - lps.theta[i] * L / dim;  // (4.9)
+                const double ed = norm(y[j] - y[i]) - L - lps.theta[i] * L / dim;  // (4.9)
                 const double edb = laws::maxwell_update(edb_c[k], ed_c[k], ed, c);            // (7.27)
                 ed_t[k] = ed, edb_t[k] = edb;
                 tv[k] = alpha_b * (ed - edb);                                                  // (7.21), branch part
                 Di += laws::maxwell_dissipation(alpha_b * lps.wV[k], edb_c[k], ed_c[k], ed, c);
-            }
+            });
             dissipation[i] = Di;
         });
     }

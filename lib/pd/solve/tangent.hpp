@@ -88,11 +88,12 @@ inline Colouring colour_bond_graph(const Bonds& b, int reach)
         for (int hop = 0; hop < reach; ++hop) {
             next.clear();
             for (int i : front)
-                for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-                    if (const int j = b.partner[k]; mark[j] != static_cast<int>(a)) {
+                for_family(b, i, [&](std::int64_t, int j) {
+                    if (mark[j] != static_cast<int>(a)) {
                         mark[j] = static_cast<int>(a);
                         next.push_back(j);
                     }
+                });
             set.insert(set.end(), next.begin(), next.end());
             front.swap(next);
         }

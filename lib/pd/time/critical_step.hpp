@@ -24,7 +24,7 @@ inline CriticalStep critical_step_silling_askari(const Bonds& b, const std::vect
     CriticalStep r{std::numeric_limits<double>::infinity(), -1};
     for (std::size_t i = 0; i < b.nodes(); ++i) {
         double stiffness = 0;  // sum_j omega V_j c / |xi|: force density per displacement [N/m^4]
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) stiffness += b.omega[k] * b.volume[k] * c / b.length[k];
+        for_family(b, i, [&](std::int64_t k, int) { stiffness += b.omega[k] * b.volume[k] * c / b.length[k]; });
         if (stiffness <= 0) continue;
         const double dt = std::sqrt(2 * rho[i] / stiffness);
         if (dt < r.dt) r = {dt, static_cast<int>(i)};
