@@ -163,7 +163,7 @@ TEST(DamageModels, ExplicitRecomputesAfterBreaking)
         b.enable_damage();
         auto model = make(body, b);
         Explicit<3, decltype(model)> ex(body, b, model, 7800);
-        CriticalStretch crit{.s0 = 1e-3, .s0_bond = {}, .no_fail = {}};
+        CriticalStretch crit = CriticalStretch::uniform(1e-3);
         ex.scene.set_damage(crit);
         std::mt19937 gen(1);
         std::uniform_real_distribution<double> U(-1e-3 * dx, 1e-3 * dx);  // stretches up to ~2e-3

@@ -62,7 +62,7 @@ TEST(Damage, BreaksOnlyOverstretchedBondsAndHonoursNoFail)
     b.enable_damage();
     Field<1> y = body.x;
     y.c[0][2] += 0.02;
-    CriticalStretch crit{.s0 = 0.01, .s0_bond = {}, .no_fail = {}};
+    CriticalStretch crit = CriticalStretch::uniform(0.01);
     EXPECT_EQ(crit.apply(b, y), 2);
     const auto phi = point_damage(b);
     EXPECT_DOUBLE_EQ(phi[0], 0.0);
@@ -70,7 +70,7 @@ TEST(Damage, BreaksOnlyOverstretchedBondsAndHonoursNoFail)
     EXPECT_DOUBLE_EQ(phi[2], 1.0);
     Bonds b2 = build_bonds(body, 1.0);
     b2.enable_damage();
-    CriticalStretch guarded{.s0 = 0.01, .s0_bond = {}, .no_fail = {}};
+    CriticalStretch guarded = CriticalStretch::uniform(0.01);
     guarded.protect({2}, body.size());
     EXPECT_EQ(guarded.apply(b2, y), 0);
     // A broken bond carries no force: node 2 is free, so its force vanishes.

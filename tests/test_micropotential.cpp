@@ -89,7 +89,7 @@ double first_break_strain(double h, double ds, double ratio = 1, double s0 = 0)
     CriticalMicropotential<3> mp;
     mp.w_c = w_critical(Jc_si3n4, b.delta);
     if (ratio != 1) mp.jc_ratio.assign(body.size(), ratio);
-    CriticalStretch cs{.s0 = s0, .s0_bond = {}, .no_fail = {}};
+    CriticalStretch cs = CriticalStretch::uniform(s0);
     Field<3> y = body.x, f;
     for (int n = 0; n < 100000; ++n) {
         const double s = n * ds;

@@ -23,7 +23,7 @@ std::filesystem::path pulled_block(bool moving = true, bool warm = false)
         for (int j = 0; j < 4; ++j)
             for (int i = 0; i < 8; ++i)
                 s += num((i + 0.5) * 1e-3) + "," + num((j + 0.5) * 1e-3) + "," + num((k + 0.5) * 1e-3) + ",1e-9" +
-                     (moving ? "," + num(i < 4 ? -20 : 20) : "") + (warm ? std::string(i < 2 ? ",100" : ",20") : "") + "\n";
+                     (moving ? std::string(",") + num(i < 4 ? -20 : 20) : "") + (warm ? std::string(i < 2 ? ",100" : ",20") : "") + "\n";
     return write_file(std::string(moving ? "pulled" : "still") + (warm ? "_warm" : "") + ".csv", s);
 }
 

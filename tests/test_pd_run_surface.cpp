@@ -21,7 +21,7 @@ TEST(PdRun, LpsSurfaceCorrectionReachesTheModel)
 {
     const int n = 4;
     const double dx = 1e-3, eps = 1e-3;
-    const auto p = write_file("lps_sc.csv", lattice_csv(n, dx, ",ux", [&](int i, int, int) { return "," + num(eps * (i + 0.5) * dx); }));
+    const auto p = write_file("lps_sc.csv", lattice_csv(n, dx, ",ux", [&](int i, int, int) { return std::string(",") + num(eps * (i + 0.5) * dx); }));
     const std::string args = "--input " + p.string() + steel + " --model lps --delta 3e-3 --dt 1e-9 --steps 1";
     const Result off = pd_run("lps_sc_off", args);
     const Result on = pd_run("lps_sc_on", args + " --surface-correction energy");

@@ -143,7 +143,7 @@ TEST(RandomField, PerBondCriticalStretchBreaksExactlyTheWeakBonds)
     // Scalar vs constant per-bond field: same broken set.
     Bonds b1 = build_bonds(body, 2.1e-3), b2 = b1;
     b1.enable_damage(), b2.enable_damage();
-    CriticalStretch scalar{.s0 = 0.9e-3, .s0_bond = {}, .no_fail = {}}, per_bond;
+    CriticalStretch scalar = CriticalStretch::uniform(0.9e-3), per_bond;
     per_bond.s0_bond.assign(b2.size(), 0.9e-3);
     EXPECT_EQ(scalar.apply(b1, y), per_bond.apply(b2, y));
     EXPECT_EQ(b1.intact, b2.intact);

@@ -42,7 +42,7 @@ TEST(Scene, BondsCarryTheInfluenceFunction)
 {
     const Body<3> body = box<3>({{0, 0, 0}}, {{4 * dx, 4 * dx, 4 * dx}}, dx);
     const double delta = 2.5 * dx;
-    const Bonds b = build_bonds(body, delta, {.influence = Influence::parse("inv_xi")});
+    const Bonds b = build_bonds(body, delta, {.influence = Influence::parse("inv_xi"), .keep = {}});
     const Elastic mat = Elastic::from_E_nu(200e9, 0.25);
     const PMB pmb({.material = mat, .dim = 3}, b);
     EXPECT_NEAR(pmb.c / (27 * mat.K / (2 * std::numbers::pi * std::pow(delta, 4))), 1.0, 1e-12);
@@ -54,7 +54,7 @@ TEST(Scene, AnyDamageRuleWithTheProtocolDrivesAnExplicitRun)
     const Body<3> body = box<3>({{0, 0, 0}}, {{4 * dx, 4 * dx, 4 * dx}}, dx);
     Bonds bonds = build_bonds(body, 2.5 * dx);
     PMB model({.material = Elastic::from_E_nu(200e9, 0.25), .dim = 3}, bonds);
-    BreakOnePair rule{.k = 7, .at = 3};
+    BreakOnePair rule{.k = 7, .at = 3, .calls = 0, .log = {}};
     Scene<3, PMB> scene(body, bonds, model);
     scene.set_damage(rule);
     EXPECT_TRUE(bonds.has_damage());  // set_damage enables the intact flags

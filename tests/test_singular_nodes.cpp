@@ -38,7 +38,7 @@ Case run(bool protect_c, bool rule_on)
     const long intact0 = std::count(bonds.intact.begin(), bonds.intact.end(), 1);
     C3 model({Elastic::from_E_nu(200e9, 0.3), C3::Law::linear, 0.02}, body, bonds);
     Explicit<3, C3> ex(body, bonds, model, 7850);
-    CriticalStretch cs{.s0 = 1.0};  // no bond reaches it: only the rule breaks bonds
+    CriticalStretch cs = CriticalStretch::uniform(1.0);  // no bond reaches it: only the rule breaks bonds
     cs.detach_singular = rule_on;
     if (protect_c) cs.protect({static_cast<int>(c)}, body.size());
     ex.scene.set_damage(cs);
@@ -49,7 +49,9 @@ Case run(bool protect_c, bool rule_on)
     r.intact_total = std::count(bonds.intact.begin(), bonds.intact.end(), 1);
     r.detached = cs.detached_nodes;
     EXPECT_GT(r.intact_total, 0);
-    if (!protect_c && rule_on) EXPECT_EQ(intact0 - r.intact_total, 2 * 24);  // c's in-plane bonds, both ways
+    if (!protect_c && rule_on) {
+        EXPECT_EQ(intact0 - r.intact_total, 2 * 24);  // c's in-plane bonds, both ways
+    }
     return r;
 }
 }  // namespace

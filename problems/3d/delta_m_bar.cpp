@@ -123,7 +123,7 @@ Fracture fracture_time(const Material& p, double delta, double m, bool micro, pd
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, left, d, pd::TimeFunction::ramp(-g, t_max)});
         ex.boundary.prescribe({pd::Prescribed::Kind::displacement, right, d, pd::TimeFunction::ramp(g, t_max)});
     }
-    pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(p.Gc, p.mat, delta), .s0_bond = {}, .no_fail = {}};
+    pd::CriticalStretch cs = pd::CriticalStretch::uniform(pd::s0_madenci_oterkus_3d(p.Gc, p.mat, delta));
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(p.Gc, delta);
     mp.hourglass_work = p.hourglass_work;

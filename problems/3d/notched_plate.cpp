@@ -70,7 +70,7 @@ Result run_plate(const Setup& s, const std::string& name, const std::string& dam
     const std::vector<double> phi0 = pd::point_damage(bonds);
     auto holder = make(bonds);
     pd::Explicit<3, std::remove_reference_t<decltype(*holder)>> ex(s.body, bonds, *holder, s.rho);
-    pd::CriticalStretch cs{.s0 = pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta), .s0_bond = {}, .no_fail = {}};
+    pd::CriticalStretch cs = pd::CriticalStretch::uniform(pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta));
     pd::CriticalMicropotential<3> mp;
     mp.w_c = pd::w_critical(s.Gc, s.delta);
     cs.protect(s.protect, s.body.size()), mp.protect(s.protect, s.body.size());

@@ -32,7 +32,8 @@ inline double disc_rectangle_area(double R, double x0, double x1, double y0, dou
                 const double x = sign * std::sqrt((R - std::abs(y)) * (R + std::abs(y)));
                 if (x > a && x < b) cut[n++] = x;
             }
-    std::sort(cut, cut + n);
+    for (int p = 1; p < n; ++p)  // insertion sort of at most 6 values (std::sort trips GCC 12's -Warray-bounds here)
+        for (int q = p; q > 0 && cut[q] < cut[q - 1]; --q) std::swap(cut[q], cut[q - 1]);
     double area = 0;
     for (int k = 0; k + 1 < n; ++k) {
         const double u = cut[k], v = cut[k + 1];

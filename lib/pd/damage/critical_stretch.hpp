@@ -57,6 +57,14 @@ struct CriticalStretch {
     std::vector<std::uint8_t> detached; // per node, 1 = all bonds break at the next break_bonds
     long detached_nodes = 0;            // nodes detached so far by the singular-node rule
 
+    // A uniform critical stretch s0 [-], every other member at its default.
+    static CriticalStretch uniform(double s0)
+    {
+        CriticalStretch c;
+        c.s0 = s0;
+        return c;
+    }
+
     void protect(const NodeSet& set, std::size_t nodes)
     {
         if (no_fail.empty()) no_fail.assign(nodes, 0);

@@ -92,7 +92,7 @@ inline std::string first_difference(const std::string& saved, const std::string&
     while (true) {
         const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
         if (!ga && !gb) return "";
-        if (!ga || !gb || la != lb) return "'" + shown(ga, la) + "' in the checkpoint, '" + shown(gb, lb) + "' in this run";
+        if (!ga || !gb || la != lb) return std::string("'") + shown(ga, la) + "' in the checkpoint, '" + shown(gb, lb) + "' in this run";
     }
 }
 

@@ -103,7 +103,7 @@ RunInfo run_fracture(const Body<D>& body, Bonds& bonds, const Mat& mat, const Bo
     pd::require_steps(std::ceil(t_end / dt_bound * (1 - 1e-12)), "--t-end / dt");
     info.steps = static_cast<long>(std::ceil(t_end / dt_bound * (1 - 1e-12)));  // 1e-12: t_end a multiple of dt_bound
     info.dt = t_end / info.steps;
-    CriticalStretch damage{.s0 = info.s0, .s0_bond = {}, .no_fail = {}};
+    CriticalStretch damage = CriticalStretch::uniform(info.s0);
     if (!o.no_fail.empty()) damage.protect(o.no_fail, body.size());
     Explicit<D, PMB> sim(body, bonds, model, mat.rho);
     sim.boundary = boundary;
