@@ -86,14 +86,12 @@ static int run_case(int argc, char** argv)
     if (which != "all") models = {which};
     const Loading load{strain, steps, tol, max_iter, safety};
     auto none = [](const pd::Bonds&, const pd::Field<3>&) {};
-    auto stateless = [](pd::StateArchive&) {};  // models without history between load steps
     std::map<std::string, Run> runs;
     for (const std::string& name : models) {
         using Corr = pd::Correspondence<3>;
         const pd::Body<3>& body = s.g.body;
         auto load_steps = [&](auto& model, UniaxialLaw law, auto commit) {  // density: the model's reference-tangent bound
-            return stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit, run.checkpoints(),
-                           [&](pd::StateArchive& ar) { if constexpr (requires { model.state(ar, ""); }) model.state(ar, "load_step"); });
+            return stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit, run.checkpoints());
         };
         Run r;
         if (name == "pmb") {  // nu = 1/4, energy surface correction (classical W_inf), as bar_stiffness_3d
@@ -102,7 +100,7 @@ static int run_case(int argc, char** argv)
                                          {.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
             const pd::Elastic pmb_mat = pd::Elastic::from_E_nu(3 * mat.K * 0.5, 0.25);  // E = 1.5 K
             r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, 0.25, UniaxialLaw::pmb_continuum, pmb_mat, none,
-                        run.checkpoints(), stateless);
+                        run.checkpoints());
         } else if (name == "lps") {
             pd::LPS model({.material = mat, .dim = 3}, bonds);
             r = load_steps(model, UniaxialLaw::lps_continuum, none);

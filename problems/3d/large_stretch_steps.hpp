@@ -52,11 +52,11 @@ struct Bar {
 
 // Load stepping by ADR; `commit` ends each converged step (Flanagan-Taylor), no-op otherwise. The
 // load steps are a restartable loop (io/checkpoints.hpp): its state is the converged fields of the
-// last two steps, the curve so far and model_state(ar) (Flanagan-Taylor: the committed state of
-// pd::LoadStep); each ADR solve starts afresh from u, so nothing else carries over between steps.
-template <class Model, class Commit, class ModelState>
+// last two steps, the curve so far and, for pd::LoadStep (Flanagan-Taylor), its committed state;
+// each ADR solve starts afresh from u, so nothing else carries over between steps.
+template <class Model, class Commit>
 Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bonds& bonds, const Loading& load, double nu,
-            UniaxialLaw law, const pd::Elastic& mat, Commit commit, pd::io::Checkpoints& cp, ModelState model_state)
+            UniaxialLaw law, const pd::Elastic& mat, Commit commit, pd::io::Checkpoints& cp)
 {
     const auto [strain, steps, tol, max_iter, safety] = load;
     pd::io::Timer timer;
@@ -69,7 +69,8 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bon
     Run run;
     auto state = [&](pd::StateArchive& ar) {
         ar("u", u), ar("u_old", u_old), ar.records("curve", run.curve), ar("converged", run.converged), ar("message", run.message);
-        timer.state(ar, "wall"), model_state(ar);
+        timer.state(ar, "wall");
+        if constexpr (requires { model.state(ar, ""); }) model.state(ar, "load_step");
     };
     cp.loop(steps, state, [] {}, [&](long k) {
         const double U = strain * s.L * k / steps;
