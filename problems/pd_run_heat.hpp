@@ -1,9 +1,10 @@
 // problems/pd_run_heat.hpp -- the heat-conduction part of pd_run (issue 4): its options, their
-// checks, and HeatRun, the temperature field of a point cloud advanced step by step.
+// checks, and HeatRun: the library's temperature field of the point cloud (pd/heat/temperature_field.hpp;
+// with mechanics, the scene's heat component) with pd_run's guard and heat.csv.
 //   rho cv dT_i/dt = Q_i(T) on free nodes, T_i = T_fixed_i on held nodes (pd/heat/conduction.hpp),
 //   Q from Agwai's bond-based model or the correspondence heat model (pd/heat/agwai.hpp,
 //   correspondence_heat.hpp); no sources, no convection, no coupling to the mechanics (yet).
-// Integrators: explicit Euler, implicit Euler, CVODE BDF (one advance() per thermal step).
+// Integrators: explicit Euler, implicit Euler, CVODE BDF (one output per thermal step).
 // dt_thermal default = 0.5 x the Gershgorin thermal critical step (spec/000b eq. 3.20).
 // Heat guard: with no sources the exact temperatures stay in the range of the initial and held
 // values (maximum principle); a temperature outside that range widened by 10 x its width, or a
@@ -82,41 +83,52 @@ struct HeatSettings {
     bool resumed = false;  // restarted from a checkpoint: heat.csv is written by state(), not by init
 };
 
-// The temperature field and its integrator, whatever the heat model (type-erased for the driver).
+// The run's temperature field (pd/heat/temperature_field.hpp: the model and integrator of the settings)
+// with the heat guard and heat.csv, both run after every thermal step.
 class HeatRun {
 public:
-    virtual ~HeatRun() = default;
-    std::vector<double> T;  // [K or C]
-    long step = 0;          // thermal steps taken
-    double dt = 0;          // [s]
-    double t() const { return double(step) * dt; }
-    const std::vector<double>& heat_flow() { return flow(T); }  // Q at the current T [W/m^3]
+    template <class Model>
+    HeatRun(Model model, const HeatSettings& s, const pd::io::PointCloud& pc, const pd::Bonds& bonds, const std::filesystem::path& out,
+            void (*fail)(const std::string&))
+        : rho_cv_(s.rho_cv), every_(s.every), volume_(pc.volume), log_path_(out / "heat.csv")
+    {
+        std::vector<double> T0(pc.size());
+        for (std::size_t i = 0; i < pc.size(); ++i) T0[i] = std::isnan(pc.T0[i]) ? s.T0 : pc.T0[i];
+        const pd::HeatIntegrator integrator = pd::parse_heat_integrator(s.integrator);
+        auto field = pd::make_temperature_field(std::move(model), bonds, std::vector<double>(pc.size(), s.rho_cv), loads(pc), std::move(T0), integrator);
+        std::printf("heat: model %s, integrator %s, held temperatures %zu\n", s.model.c_str(), s.integrator.c_str(),
+                    field->conduction().loads().fixed.size());
+        const double crit = field->critical_step();
+        if (std::isnan(s.dt)) {
+            if (!std::isfinite(crit)) fail("option --dt-thermal is required: no free point has a bond within --delta");
+            field->dt = thermal_dt_safety * crit;
+            std::printf("dt_thermal = %.17g s (%.2g x thermal critical step %.6g s)\n", field->dt, thermal_dt_safety, crit);
+        } else {
+            field->dt = s.dt;
+            std::printf("dt_thermal = %.17g s (given; thermal critical step %.6g s, ratio %.3g)\n", s.dt, crit, s.dt / crit);
+            if (s.dt > crit && integrator == pd::HeatIntegrator::explicit_euler)
+                std::printf("warning: --dt-thermal exceeds the thermal critical step; explicit Euler may go unstable\n");
+        }
+        field_ = std::move(field);
+        field_->after_step = [this](const pd::TemperatureField& f) { guard_and_log(f); };
+        const auto [mn, mx] = std::minmax_element(field_->theta.begin(), field_->theta.end());
+        const double width = *mx - *mn, slack = 1e-9 * std::max(std::abs(*mn), std::abs(*mx));  // round-off of a uniform field
+        lo_ = *mn - guard_widening * width - slack;
+        hi_ = *mx + guard_widening * width + slack;
+        if (s.resumed) return;  // the complete heat.csv of the first run stays until log_state() rewrites it
+        open_log();
+        record();  // thermal step 0
+    }
 
-    // One thermal step, the guard, and a heat.csv row every k steps (and when `last`).
-    void advance(bool last)
+    pd::TemperatureField& field() { return *field_; }
+    const std::vector<double>& T() const { return field_->theta; }
+    long last_step = 0;  // the run's last thermal step: its heat.csv row is written whatever the cadence
+
+    // The rows of heat.csv for a checkpoint (pd_run_checkpoint.hpp; the field's own state is the
+    // scene's or the heat-only loop's): a restart writes them again, those on the cadence or at
+    // last_step, so that heat.csv holds the whole run.
+    void log_state(pd::StateArchive& ar)
     {
-        take_step();
-        ++step;
-        for (std::size_t i = 0; i < T.size(); ++i)
-            if (!std::isfinite(T[i]) || T[i] < lo_ || T[i] > hi_)
-                throw pd::Unstable("heat run unstable at thermal step " + std::to_string(step) + ", node " + std::to_string(i) +
-                                       ": T = " + pd::io::format_double(T[i]) + " outside the guard band [" +
-                                       pd::io::format_double(lo_) + ", " + pd::io::format_double(hi_) + "]",
-                                   step, int(i));
-        if (step % every_ == 0 || last) record();
-    }
-    void record()
-    {
-        double H = 0;  // sum rho cv V T [J, relative to T = 0 of the unit given]
-        for (std::size_t i = 0; i < T.size(); ++i) H += rho_cv_ * volume_[i] * T[i];
-        log_row({double(step), t(), H, *std::min_element(T.begin(), T.end()), *std::max_element(T.begin(), T.end())});
-    }
-    // Its part of a checkpoint (pd_run_checkpoint.hpp): the field, the step and the rows of heat.csv
-    // (a restart writes them again, those on the cadence or at last_step, so that heat.csv holds the
-    // whole run).
-    void state(pd::StateArchive& ar, long last_step)
-    {
-        ar("heat.T", T), ar("heat.step", step);
         std::vector<double> rows = ar.saving() ? rows_ : std::vector<double>{};
         ar("heat.rows", rows);
         if (ar.saving()) return;
@@ -125,25 +137,8 @@ public:
             if (on_cadence(step_number(rows[q]), every_, last_step)) log_row({rows.begin() + q, rows.begin() + q + 5});
     }
 
-protected:
-    virtual void take_step() = 0;
-    virtual const std::vector<double>& flow(const std::vector<double>& T) = 0;
-    void init(const HeatSettings& s, const pd::io::PointCloud& pc, const std::filesystem::path& out)
-    {
-        rho_cv_ = s.rho_cv;
-        every_ = s.every;
-        volume_ = pc.volume;
-        const auto [mn, mx] = std::minmax_element(T.begin(), T.end());
-        const double width = *mx - *mn, slack = 1e-9 * std::max(std::abs(*mn), std::abs(*mx));  // round-off of a uniform field
-        lo_ = *mn - guard_widening * width - slack;
-        hi_ = *mx + guard_widening * width + slack;
-        log_path_ = out / "heat.csv";
-        if (s.resumed) return;  // the complete heat.csv of the first run stays until state() rewrites it
-        open_log();
-        record();  // thermal step 0
-    }
-
 private:
+    std::unique_ptr<pd::TemperatureField> field_;
     double rho_cv_ = 0, lo_ = 0, hi_ = 0;
     long every_ = 1;
     std::vector<double> volume_;
@@ -151,6 +146,31 @@ private:
     std::unique_ptr<pd::io::CsvWriter> log_;
     std::vector<double> rows_;  // the rows of heat.csv (5 per row), for a checkpoint
 
+    static pd::HeatLoads loads(const pd::io::PointCloud& pc)
+    {
+        pd::HeatLoads l;
+        for (std::size_t i = 0; i < pc.size(); ++i)
+            if (!std::isnan(pc.T_fixed[i])) l.fixed.push_back(int(i)), l.fixed_value.push_back(pc.T_fixed[i]);
+        return l;
+    }
+    // After each thermal step: the guard, and a heat.csv row every k steps and at the last one.
+    void guard_and_log(const pd::TemperatureField& f)
+    {
+        for (std::size_t i = 0; i < f.theta.size(); ++i)
+            if (!std::isfinite(f.theta[i]) || f.theta[i] < lo_ || f.theta[i] > hi_)
+                throw pd::Unstable("heat run unstable at thermal step " + std::to_string(f.step) + ", node " + std::to_string(i) +
+                                       ": T = " + pd::io::format_double(f.theta[i]) + " outside the guard band [" +
+                                       pd::io::format_double(lo_) + ", " + pd::io::format_double(hi_) + "]",
+                                   f.step, int(i));
+        if (f.step % every_ == 0 || f.step == last_step) record();
+    }
+    void record()
+    {
+        const std::vector<double>& T = field_->theta;
+        double H = 0;  // sum rho cv V T [J, relative to T = 0 of the unit given]
+        for (std::size_t i = 0; i < T.size(); ++i) H += rho_cv_ * volume_[i] * T[i];
+        log_row({double(field_->step), field_->t(), H, *std::min_element(T.begin(), T.end()), *std::max_element(T.begin(), T.end())});
+    }
     void open_log()
     {
         log_.reset();
@@ -165,72 +185,16 @@ private:
     }
 };
 
-template <class Model>
-class HeatRunOf : public HeatRun {
-public:
-    HeatRunOf(Model model, const HeatSettings& s, const pd::io::PointCloud& pc, const pd::Bonds& bonds,
-              const std::filesystem::path& out, void (*fail)(const std::string&))
-        : model_(std::move(model)), bonds_(bonds), integrator_(s.integrator),
-          cond_(model_, bonds, std::vector<double>(pc.size(), s.rho_cv), loads(pc))
-    {
-        T.resize(pc.size());
-        for (std::size_t i = 0; i < pc.size(); ++i) T[i] = std::isnan(pc.T0[i]) ? s.T0 : pc.T0[i];
-        cond_.apply_fixed(T);  // a held node starts at its held temperature
-        std::printf("heat: model %s, integrator %s, held temperatures %zu\n", s.model.c_str(), s.integrator.c_str(),
-                    cond_.loads().fixed.size());
-        const double crit = pd::thermal_critical_step(model_, bonds, cond_, T);
-        if (std::isnan(s.dt)) {
-            if (!std::isfinite(crit)) fail("option --dt-thermal is required: no free point has a bond within --delta");
-            dt = thermal_dt_safety * crit;
-            std::printf("dt_thermal = %.17g s (%.2g x thermal critical step %.6g s)\n", dt, thermal_dt_safety, crit);
-        } else {
-            dt = s.dt;
-            std::printf("dt_thermal = %.17g s (given; thermal critical step %.6g s, ratio %.3g)\n", dt, crit, dt / crit);
-            if (dt > crit && integrator_ == "explicit")
-                std::printf("warning: --dt-thermal exceeds the thermal critical step; explicit Euler may go unstable\n");
-        }
-        init(s, pc, out);
-        if (integrator_ == "cvode") cvode_ = std::make_unique<pd::HeatCvode<Model>>(cond_, model_, bonds, T, 0.0);
-    }
-
-private:
-    static pd::HeatLoads loads(const pd::io::PointCloud& pc)
-    {
-        pd::HeatLoads l;
-        for (std::size_t i = 0; i < pc.size(); ++i)
-            if (!std::isnan(pc.T_fixed[i])) l.fixed.push_back(int(i)), l.fixed_value.push_back(pc.T_fixed[i]);
-        return l;
-    }
-    void take_step() override
-    {
-        if (integrator_ == "explicit") cond_.explicit_euler(T, dt);
-        else if (integrator_ == "implicit") cond_.implicit_euler(T, dt);
-        else T = cvode_->advance(double(step + 1) * dt);
-    }
-    const std::vector<double>& flow(const std::vector<double>& theta) override
-    {
-        pd::heat_flow(model_, bonds_, theta, Q_);
-        return Q_;
-    }
-
-    Model model_;
-    const pd::Bonds& bonds_;
-    std::string integrator_;
-    pd::Conduction<Model> cond_;
-    std::unique_ptr<pd::HeatCvode<Model>> cvode_;
-    std::vector<double> Q_;
-};
-
 // The heat run of the settings on the given family (bonds must outlive it).
 template <int D>
 std::unique_ptr<HeatRun> make_heat(const HeatSettings& s, const pd::io::PointCloud& pc, const pd::Body<D>& body,
                                    const pd::Bonds& bonds, const std::filesystem::path& out, void (*fail)(const std::string&))
 {
     if (s.model == "agwai")
-        return std::make_unique<HeatRunOf<pd::Agwai>>(
-            pd::Agwai({.k = s.k, .measure = s.measure, .correction = s.correction}, body, bonds), s, pc, bonds, out, fail);
-    return std::make_unique<HeatRunOf<pd::CorrespondenceHeat<D>>>(
-        pd::CorrespondenceHeat<D>({.k = s.k, .C_hg = s.hourglass, .measure = s.measure}, body, bonds), s, pc, bonds, out, fail);
+        return std::make_unique<HeatRun>(pd::Agwai({.k = s.k, .measure = s.measure, .correction = s.correction}, body, bonds), s, pc, bonds,
+                                         out, fail);
+    return std::make_unique<HeatRun>(pd::CorrespondenceHeat<D>({.k = s.k, .C_hg = s.hourglass, .measure = s.measure}, body, bonds), s, pc,
+                                     bonds, out, fail);
 }
 
 }  // namespace pd_run

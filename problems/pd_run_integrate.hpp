@@ -126,10 +126,11 @@ private:
     std::vector<double> steps_, times_;  // of the snapshots written (steps as numbers)
 };
 
-inline void report_heat(const HeatRun& heat)
+inline void report_heat(HeatRun& heat)
 {
-    const auto [lo, hi] = std::minmax_element(heat.T.begin(), heat.T.end());
-    std::printf("  thermal step %ld  t = %.6g s  T in [%.6g, %.6g]\n", heat.step, heat.t(), *lo, *hi);
+    const pd::TemperatureField& f = heat.field();
+    const auto [lo, hi] = std::minmax_element(f.theta.begin(), f.theta.end());
+    std::printf("  thermal step %ld  t = %.6g s  T in [%.6g, %.6g]\n", f.step, f.t(), *lo, *hi);
 }
 
 // 4.-5. Heat only (--mechanics off): the steps are thermal steps.
@@ -139,25 +140,28 @@ int integrate_heat(const Run& cfg, const pd::io::PointCloud& pc, HeatRun& heat)
     VtuSeries vtu(cfg);
     auto output = [&](long n) {
         if (!listed(cfg, n) && !vtu_step(cfg, n)) return;
-        const pd::io::StateFields<D> f{.T = &heat.T, .Q = &heat.heat_flow()};
+        const pd::io::StateFields<D> f{.T = &heat.T(), .Q = &heat.field().heat_flow()};
         if (listed(cfg, n)) pd::io::write_state<D>(cfg.out, n, pc, f);
-        if (vtu_step(cfg, n)) vtu.write<D>(n, heat.t(), pc, f);
+        if (vtu_step(cfg, n)) vtu.write<D>(n, heat.field().t(), pc, f);
     };
     auto state = [&](pd::StateArchive& ar) {
-        heat.state(ar, cfg.steps);
+        heat.field().state(ar);
+        heat.log_state(ar);
         vtu.state(ar);
     };
+    heat.last_step = cfg.steps;
     if (cfg.checkpoints.restart) state(*cfg.checkpoints.restart);
     pd::io::Timer timer;
-    const int status = step_loop(cfg.checkpoints, cfg.steps, [&](long n) { heat.advance(n == cfg.steps); }, output, state);
+    const int status = step_loop(cfg.checkpoints, cfg.steps, [&](long) { heat.field().advance(); }, output, state);
     if (status != 0) return status;
     report_heat(heat);
     std::printf("%s: done, %ld thermal steps in %.3g s; wrote %s\n", program, cfg.steps, timer.seconds(), cfg.out.string().c_str());
     return 0;
 }
 
-// 4.-5. Mechanics, with the heat run (if any) following the mechanical clock: after mechanical step
-// n the heat takes thermal steps while (m + 1) dt_thermal <= n dt (relative slack 1e-12 for round-off).
+// 4.-5. Mechanics, with the heat run (if any) as the scene's heat component (pd/scene.hpp): before
+// the forces of mechanical step n it takes the thermal steps m with m dt_thermal <= n dt (relative
+// slack 1e-12 for round-off; pd/heat/temperature_field.hpp).
 template <int D, class Model>
 int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& body, pd::Bonds& bonds, Model& model,
               HeatRun* heat)
@@ -183,8 +187,10 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     damage.s0 = cfg.s0;
     if (pc.no_fail_count() > 0) damage.no_fail = pc.no_fail;
     if (cfg.s0 > 0) sim.scene.set_damage(damage);
-    auto thermal_target = [&](long n) { return heat ? long(std::floor(double(n) * cfg.dt / heat->dt * (1 + 1e-12))) : 0L; };
-    const long thermal_total = thermal_target(cfg.steps);
+    if (heat) {
+        sim.scene.set_heat(heat->field());
+        heat->last_step = heat->field().due(cfg.steps, cfg.dt);
+    }
 
     pd::io::CsvWriter energy(cfg.out / "energy.csv", {"step", "t_s", "kinetic_J", "strain_J", "external_work_J", "total_J"});
     std::vector<double> energy_rows;  // the rows of energy.csv, for the checkpoint (6 per row)
@@ -201,7 +207,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
             for (std::size_t q = 0; q + 6 <= rows.size(); q += 6)
                 if (on_cadence(step_number(rows[q]), cfg.energy_every, cfg.steps)) energy_row({rows.begin() + q, rows.begin() + q + 6});
         vtu.state(ar);
-        if (heat) heat->state(ar, thermal_total);
+        if (heat) heat->log_state(ar);  // the field itself is the scene's
     };
     pd::Energies last;
     if (cfg.checkpoints.restart) state(*cfg.checkpoints.restart), last = sim.energies();
@@ -218,15 +224,11 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
             phi = pd::point_damage(bonds);
             f.damage = &phi;
         }
-        if (heat) f.T = &heat->T, f.Q = &heat->heat_flow();
+        if (heat) f.T = &heat->T(), f.Q = &heat->field().heat_flow();
         if (s_step) pd::io::write_state<D>(cfg.out, n, pc, f);
         if (v_step) vtu.write<D>(n, sim.t, pc, f);
     };
-    auto step = [&](long n) {
-        sim.step(cfg.dt);
-        if (heat)
-            while (heat->step < thermal_target(n)) heat->advance(heat->step + 1 == thermal_total);
-    };
+    auto step = [&](long) { sim.step(cfg.dt); };
     pd::io::Timer timer;
     const int status = step_loop(cfg.checkpoints, cfg.steps, step, output, state);
     if (status != 0) return status;

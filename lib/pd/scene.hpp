@@ -3,7 +3,11 @@
 //   a damage rule      any type with the DamageRule protocol below (damage/critical_stretch.hpp,
 //                      damage/micropotential.hpp), attached by set_damage(rule);
 //   extra body forces  contact and impactors (bc/contact.hpp): extra_force(t, y, v, b) adds a force
-//                      density [N/m^3] to b.
+//                      density [N/m^3] to b;
+//   heat               a temperature field on its own clock (heat/temperature_field.hpp), attached by
+//                      set_heat(field): before the force evaluation of mechanical step n the integrator
+//                      calls advance_heat(n, dt), which takes the thermal steps due by then (the order of
+//                      spec/000a sec. 3.3.5: theta^(n+1) first, so that a coupled force sees it).
 // The model's optional roles (kernel_concepts.hpp) are served here, so that an integrator asks the
 // scene for forces and commits and knows no model or rule by name:
 //   internal_forces(u_old, u, dt, f)  one force evaluation at y = x + u after a step dt [s] from u_old:
@@ -16,6 +20,7 @@
 //     4. the rule records the evaluation (micropotential positions, singular nodes).
 //   It returns the ordered bonds broken in 1.
 //   commit()  the trial history becomes the committed one (HistoryModel).
+//   advance_heat(n, dt)  the heat component's thermal steps due after n mechanical steps of dt (none: no-op).
 // DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
 // BondWork* bond_work(const Bonds&) (null: none); template <class Model> void record(const Model&,
 // const Bonds&, const Field<D>& y); optionally state(StateArchive&), its part of a checkpoint.
@@ -26,6 +31,7 @@
 #include "pd/core/field.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/core/state_archive.hpp"
+#include "pd/heat/temperature_field.hpp"
 #include "pd/kernel_concepts.hpp"
 #include "pd/models/rate_form.hpp"
 
@@ -69,6 +75,14 @@ public:
         else rule_state_ = nullptr;
     }
 
+    // Attaches the heat component (kept by reference; header).
+    void set_heat(TemperatureField& field) { heat_ = &field; }
+    TemperatureField* heat() const { return heat_; }
+    void advance_heat(long n, double dt)
+    {
+        if (heat_) heat_->follow(n, dt);
+    }
+
     // One force evaluation (header); returns the bonds broken before it.
     long internal_forces(const Field<D>& u_old, const Field<D>& u, double dt, Field<D>& f)
     {
@@ -97,7 +111,7 @@ public:
     const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
 
     // The scene's part of a checkpoint: the intact flags, the positions of the last evaluation, the
-    // damage rule's state and the model's. A model with history keeps its own by state(ar) (and may
+    // damage rule's state, the heat component's and the model's. A model with history keeps its own by state(ar) (and may
     // rebuild(bonds, y) what its last evaluation derived from it); a rate-form stress keeps its
     // history by rate_state(ar); any other model is rebuilt on loading from the restored bonds and
     // positions by the functions that built it (recompute after breaks, the point pass): bit for bit
@@ -109,6 +123,7 @@ public:
         ar("scene.y_mid", y_mid_);
         ar("scene.v_step", v_step_);
         if (rule_state_) rule_state_(ar);
+        if (heat_) heat_->state(ar);
         if constexpr (BondDependentModel<Model>)
             if (!ar.saving() && std::find(bonds.intact.begin(), bonds.intact.end(), std::uint8_t{0}) != bonds.intact.end())
                 model.recompute(bonds);
@@ -132,6 +147,7 @@ private:
     std::function<const BondWork*(const Bonds&)> bond_work_;
     std::function<void(const Field<D>&)> record_;
     std::function<void(StateArchive&)> rule_state_;
+    TemperatureField* heat_ = nullptr;
 
     void advance_rate_form(const Field<D>& u_old, const Field<D>& u, double dt)
     {

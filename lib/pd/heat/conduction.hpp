@@ -21,6 +21,7 @@
 #pragma once
 #include "pd/core/bonds.hpp"
 #include "pd/heat/heat_loop.hpp"
+#include "pd/heat/temperature_field.hpp"
 
 #include <Eigen/Sparse>
 #include <Eigen/IterativeLinearSolvers>
@@ -33,6 +34,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pd {
@@ -329,5 +331,53 @@ double thermal_critical_step(const Model& model, const Bonds& b, const Conductio
     }
     return dt;
 }
+
+// The temperature field (temperature_field.hpp) of a heat model (agwai.hpp, correspondence_heat.hpp,
+// conductivity.hpp) under explicit or implicit Euler; CVODE: time/heat_cvode.hpp's CvodeField.
+template <class Model>
+class ConductingField : public TemperatureField {
+public:
+    // theta0: initial temperatures (held nodes start at their held values); dt may be set later
+    // (e.g. from critical_step()). CVODE is CvodeField's (time/heat_cvode.hpp).
+    ConductingField(Model model, const Bonds& bonds, std::vector<double> rho_c, HeatLoads loads, std::vector<double> theta0,
+                    HeatIntegrator integrator, double dt_thermal = 0)
+        : model_(std::move(model)), bonds_(bonds), integrator_(integrator), conduction_(model_, bonds, std::move(rho_c), std::move(loads))
+    {
+        if (theta0.size() != bonds.nodes()) throw std::invalid_argument("ConductingField: one initial temperature per node");
+        theta = std::move(theta0);
+        conduction_.apply_fixed(theta);
+        dt = dt_thermal;
+    }
+    ConductingField(const ConductingField&) = delete;  // conduction_ refers to model_
+    ConductingField& operator=(const ConductingField&) = delete;
+
+    Conduction<Model>& conduction() { return conduction_; }
+    const Model& model() const { return model_; }
+    HeatIntegrator integrator() const { return integrator_; }
+    // Explicit Euler's critical step at the current theta [s] (conduction.hpp, Gershgorin bound).
+    double critical_step() const { return thermal_critical_step(model_, bonds_, conduction_, theta); }
+
+    const std::vector<double>& heat_flow() override
+    {
+        pd::heat_flow(model_, bonds_, theta, Q_);
+        return Q_;
+    }
+
+protected:
+    void take_step() override
+    {
+        if (integrator_ == HeatIntegrator::explicit_euler) conduction_.explicit_euler(theta, dt);
+        else if (integrator_ == HeatIntegrator::implicit_euler) conduction_.implicit_euler(theta, dt);
+        else throw std::logic_error("ConductingField: CVODE is time/heat_cvode.hpp's CvodeField");
+    }
+    const Bonds& bonds() const { return bonds_; }
+
+private:
+    Model model_;
+    const Bonds& bonds_;
+    HeatIntegrator integrator_;
+    Conduction<Model> conduction_;
+    std::vector<double> Q_;
+};
 
 }  // namespace pd

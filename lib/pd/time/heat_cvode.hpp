@@ -7,8 +7,11 @@
 // each Jacobian evaluation: an approximate Jacobian (it omits the terms dk/dtheta (theta_j - theta_i)),
 // so CVODE's Newton iteration is a modified Newton one; its convergence test and error control are
 // unchanged, only the iteration count per step may grow.
+// CvodeField: the same as a TemperatureField (heat/temperature_field.hpp) with one CVODE output per
+// thermal step; make_temperature_field builds the field of any of the three integrators.
 #pragma once
 #include "pd/heat/conduction.hpp"
+#include "pd/heat/temperature_field.hpp"
 #include "pd/time/cvode_bdf.hpp"
 
 #include <memory>
@@ -61,5 +64,41 @@ private:
     std::vector<double> theta_, P_;
     std::unique_ptr<CvodeBdf> cvode_;
 };
+
+// A temperature field integrated by CVODE BDF, with an output at the end of each thermal step;
+// the solver starts at the first step from the field as it is then.
+template <class Model>
+class CvodeField : public ConductingField<Model> {
+public:
+    CvodeField(Model model, const Bonds& bonds, std::vector<double> rho_c, HeatLoads loads, std::vector<double> theta0, double dt_thermal = 0,
+               const CvodeOptions& opt = {})
+        : ConductingField<Model>(std::move(model), bonds, std::move(rho_c), std::move(loads), std::move(theta0), HeatIntegrator::cvode, dt_thermal),
+          opt_(opt)
+    {
+    }
+    const HeatCvode<Model>* solver() const { return cvode_.get(); }  // null before the first step
+
+protected:
+    void take_step() override
+    {
+        if (!cvode_) cvode_ = std::make_unique<HeatCvode<Model>>(this->conduction(), this->model(), this->bonds(), this->theta, this->t(), opt_);
+        this->theta = cvode_->advance(double(this->step + 1) * this->dt);
+    }
+
+private:
+    CvodeOptions opt_;
+    std::unique_ptr<HeatCvode<Model>> cvode_;
+};
+
+// The temperature field of `model` under the given integrator (heat/temperature_field.hpp).
+template <class Model>
+std::unique_ptr<ConductingField<Model>> make_temperature_field(Model model, const Bonds& bonds, std::vector<double> rho_c, HeatLoads loads,
+                                                               std::vector<double> theta0, HeatIntegrator integrator, double dt_thermal = 0)
+{
+    if (integrator == HeatIntegrator::cvode)
+        return std::make_unique<CvodeField<Model>>(std::move(model), bonds, std::move(rho_c), std::move(loads), std::move(theta0), dt_thermal);
+    return std::make_unique<ConductingField<Model>>(std::move(model), bonds, std::move(rho_c), std::move(loads), std::move(theta0), integrator,
+                                                    dt_thermal);
+}
 
 }  // namespace pd

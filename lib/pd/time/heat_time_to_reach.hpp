@@ -20,20 +20,6 @@
 
 namespace pd {
 
-enum class HeatIntegrator { explicit_euler, implicit_euler, cvode };
-
-inline HeatIntegrator parse_heat_integrator(const std::string& s)
-{
-    if (s == "explicit") return HeatIntegrator::explicit_euler;
-    if (s == "implicit") return HeatIntegrator::implicit_euler;
-    if (s == "cvode") return HeatIntegrator::cvode;
-    throw std::invalid_argument("integrator must be explicit|implicit|cvode, got '" + s + "'");
-}
-inline const char* name(HeatIntegrator i)
-{
-    return i == HeatIntegrator::explicit_euler ? "explicit" : i == HeatIntegrator::implicit_euler ? "implicit" : "cvode";
-}
-
 struct ReachResult {
     bool reached = false;
     double t = NAN;       // crossing time [s]

@@ -13,7 +13,8 @@
 // (u = 0) to the initial u in one pseudo step, as LoadStep from y0 = x does (so the model's state must
 // belong to the reference then); it commits the history once per step. The scene's extra_force (contact,
 // impactors) adds to the boundary's body forces (v is the half-step velocity there); its work enters
-// the external work like any body force. Explicit keeps its own copy of the scene (the rule and the
+// the external work like any body force. A heat component of the scene takes its thermal steps due
+// after the positions' update and before the force evaluation. Explicit keeps its own copy of the scene (the rule and the
 // model by reference): attach a damage rule before constructing it, or later through sim.scene.
 // Guard: a NaN/Inf displacement, or a mechanical energy KE + SE above energy_limit times
 // (initial energy + |external work|) and above a round-off floor (the whole mass moving at
@@ -142,6 +143,7 @@ public:
         for (int d = 0; d < D; ++d) b_prev_.c[d] = b_.c[d];
         t += dt;
         ++step_count;
+        scene.advance_heat(step_count, dt);  // theta^(n+1) before the forces (scene.hpp)
         evaluate(dt);
         scene.commit();
         for (int d = 0; d < D; ++d)
