@@ -24,7 +24,7 @@ RelaxationResult relax_bar(int n, double& reaction)
 {
     const double dx = T / n, delta = 3.05 * dx;
     const GrippedBar bar = gripped_bar(L, W, T, dx, 2 * delta);
-    const Bonds bonds = build_bonds(bar.body, delta);
+    Bonds bonds = build_bonds(bar.body, delta);
     const Elastic mat = Elastic::from_E_nu(100e9, 0.33);
     Model model = [&] {
         if constexpr (std::is_same_v<Model, PALS>) return PALS({.material = mat}, bar.body, bonds);

@@ -138,7 +138,7 @@ TEST(DynamicRelaxation, PMBBlockInTensionHasMidStrainDOverL)
 {
     const double h = 1e-3, eps = 1e-4;  // [m], [-]
     const Body<3> body = box<3>({{0, 0, 0}}, {{12 * h, 4 * h, 4 * h}}, h);
-    const Bonds bonds = build_bonds(body, 3 * h);
+    Bonds bonds = build_bonds(body, 3 * h);
     PMB pmb({Elastic::from_E_nu(75e9, 0.25), 3}, bonds);
     const double xc = 6 * h;  // [m]
     Boundary<3> bc;
@@ -170,7 +170,7 @@ TEST(DynamicRelaxation, PMBBlockInTensionHasMidStrainDOverL)
 TEST(DynamicRelaxation, DensityIsTheGershgorinBoundByHand)
 {
     const Body<1> body = box<1>({{0}}, {{0.2}}, 0.01, 1e-4);
-    const Bonds bonds = build_bonds(body, 0.03);
+    Bonds bonds = build_bonds(body, 0.03);
     PMB pmb({Elastic::from_E_nu(1e9, 0.25), 1, Plane::stress, 1e-4}, bonds);
     const Field<1> G = stiffness_bound(pmb, bonds, body.x);
     EXPECT_NEAR(G.c[0][10] / (22.0 / 3 * pmb.c * 1e-4), 1.0, 1e-12);
@@ -236,7 +236,7 @@ TEST(DynamicRelaxation, PALSAndCorrespondenceBoundsDominateFiniteDifferenceRowSu
     const Elastic mat = Elastic::from_E_nu(100e9, 0.33);
     for (const Vec<3>& hi : {Vec<3>{{5 * h, 5 * h, 5 * h}}, Vec<3>{{6 * h, 4 * h, 2 * h}}}) {
         const Body<3> body = box<3>({{0, 0, 0}}, hi, h);
-        const Bonds bonds = build_bonds(body, 3.05 * h);
+        Bonds bonds = build_bonds(body, 3.05 * h);
         PALS pals({.material = mat}, body, bonds);
         Corr corr({.material = mat, .law = Corr::Law::linear, .C_hg = 0.02}, body, bonds);
         const double r_pals = worst_bound_ratio(pals, body, bonds), r_corr = worst_bound_ratio(corr, body, bonds);

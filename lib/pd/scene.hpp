@@ -75,6 +75,8 @@ public:
         else rule_state_ = nullptr;
     }
 
+    bool has_damage_rule() const { return static_cast<bool>(break_bonds_); }
+
     // Attaches the heat component (kept by reference; header).
     void set_heat(TemperatureField& field) { heat_ = &field; }
     TemperatureField* heat() const { return heat_; }

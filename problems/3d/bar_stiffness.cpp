@@ -65,7 +65,7 @@ struct SolverChoice {
 // ADR from the uniform uniaxial field (u_x = U x/L, lateral contraction nu_w), then E from the
 // reaction of the right grip and the interior cross-sections.
 template <class Model>
-Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, const pd::Bonds& bonds, double nu_w,
+Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, pd::Bonds& bonds, double nu_w,
               const SolverChoice& sc, bool warm)
 {
     pd::Boundary<3> bc;
@@ -161,7 +161,7 @@ static int run_case(int argc, char** argv)
         Specimen s{L, W, T, strain * L, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * (m * T / n)), {}};
         s.gauge = pd::bar_gauge(s.bar.body, L, s.dx, s.delta);
         if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two measuring sections coincide");
-        const pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
+        pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
         // 3. Models; ADR density from each model's stiffness bound (dynamic_relaxation.hpp).
         // Classical reference W_inf (the full lattice family does not fit in a bar 1-2 cells thick); kappa: PMB's.
         const pd::SurfaceCorrectionOptions classical{.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K};

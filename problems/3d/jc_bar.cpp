@@ -48,7 +48,7 @@ struct Outcome {
 
 // Load steps with ADR and commit (header); writes curve and mid-section CSVs.
 template <class Model>
-Outcome load(Model& model, const Bar& s, const pd::Bonds& bonds, double strain, int steps, double tol, long max_iter,
+Outcome load(Model& model, const Bar& s, pd::Bonds& bonds, double strain, int steps, double tol, long max_iter,
              const pd::laws::JohnsonCook& jc, const std::filesystem::path& out, const std::string& name)
 {
     const pd::io::Timer timer;
@@ -165,7 +165,7 @@ static int run_case(int argc, char** argv)
         if (r < r_min) r_min = r, s.centre = i;
         if (r > r_max) r_max = r, s.corner = i;
     }
-    const pd::Bonds bonds = pd::build_bonds(s.body, s.delta);
+    pd::Bonds bonds = pd::build_bonds(s.body, s.delta);
     std::printf("bar: %zu nodes, %zu bonds, dx = %.3e m, delta = %.3e m, mid-section %zu nodes\n", s.body.size(), bonds.size(),
                 s.dx, s.delta, s.section.size());
 

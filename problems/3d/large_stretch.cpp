@@ -77,7 +77,7 @@ static int run_case(int argc, char** argv)
     Bar s{L, W, T, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * m * T / n), {}};
     s.gauge = pd::bar_gauge(s.g.body, L, s.dx, s.delta);
     if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two gauge layers coincide");
-    const pd::Bonds bonds = pd::build_bonds(s.g.body, s.delta);
+    pd::Bonds bonds = pd::build_bonds(s.g.body, s.delta);
     std::printf("\nnodes %zu, bonds %zu, dx %.3e m, delta %.3e m, gauge %.3e m\n", s.g.body.size(), bonds.size(), s.dx, s.delta, s.gauge.dist);
 
     // 3.-5. Models, load stepping by ADR (density: the model's reference-tangent bound).

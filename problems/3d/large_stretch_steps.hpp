@@ -55,7 +55,7 @@ struct Bar {
 // last two steps, the curve so far and, for pd::LoadStep (Flanagan-Taylor), its committed state;
 // each ADR solve starts afresh from u, so nothing else carries over between steps.
 template <class Model, class Commit>
-Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, const pd::Bonds& bonds, const Loading& load, double nu,
+Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, pd::Bonds& bonds, const Loading& load, double nu,
             UniaxialLaw law, const pd::Elastic& mat, Commit commit, pd::io::Checkpoints& cp)
 {
     const auto [strain, steps, tol, max_iter, safety] = load;

@@ -98,7 +98,7 @@ Outcome run_explicit(Scene& s, Model& model, double sf, double c_pmb)
 
 // Quasi-static E of the same scene by ADR, warm-started from the uniform uniaxial field.
 template <class Model>
-double quasi_static(const Scene& s, Model& model, const pd::Field<3>& bound, double nu)
+double quasi_static(Scene& s, Model& model, const pd::Field<3>& bound, double nu)
 {
     pd::DynamicRelaxation<3, Model> adr(s.bar.body, s.bonds, model, bound);
     pd::Boundary<3> bc;

@@ -24,6 +24,10 @@
 // 5e-4: stalls at 4e-10); a tighter tol ends as not converged. Iterations grow ~ linearly with
 // the nodes across the body per decade of residual (1D PMB to 1e-8: 365, 750, 1501, 2976
 // iterations for 50, 100, 200, 400 nodes).
+// Forces come from the scene (scene.hpp); a damage rule is refused (bonds breaking during the
+// fictitious iterations have no meaning). A history model (HistoryModel) gets its trial state over
+// load_step [s] (default 1: a pseudo time; only rate-dependent laws read it) from the committed
+// history at every iteration; the caller commits after a converged solve.
 #pragma once
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
@@ -31,6 +35,7 @@
 #include "pd/core/lattice.hpp"
 #include "pd/models/rate_form.hpp"
 #include "pd/models/stiffness_bound.hpp"  // the diagonal densities
+#include "pd/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -56,24 +61,25 @@ struct RelaxationResult {
 template <int D, class Model>
 class DynamicRelaxation {
 public:
+    Scene<D, Model> scene;     // forces (scene.hpp): body, bonds, model
     const Body<D>& body;
-    const Bonds& bonds;
-    Model& model;
     double safety = 1.2;       // lambda = safety * dt^2/4 * G (see header) [-]
+    double load_step = 1;      // the step handed to a history model (header) [s]
     long history_every = 100;  // residual history stride [iterations]
     double force_scale = 0;    // [N]; > 0 overrides the automatic scale
 
     // Density from stiffness_bound(model, bonds, x) (PMB, LPS, PALS, correspondence).
-    DynamicRelaxation(const Body<D>& body, const Bonds& bonds, Model& model)
-        : DynamicRelaxation(body, bonds, model, stiffness_bound(model, bonds, body.x)) {}
+    explicit DynamicRelaxation(const Scene<D, Model>& s) : DynamicRelaxation(s, stiffness_bound(s.model, s.bonds, s.body.x)) {}
     // Density from given Gershgorin row sums G [N/m^5 in 3D], e.g. stiffness_bound_micromodulus.
-    DynamicRelaxation(const Body<D>& body, const Bonds& bonds, Model& model, Field<D> row_sum)
-        : body(body), bonds(bonds), model(model), G_(std::move(row_sum))
+    DynamicRelaxation(const Scene<D, Model>& s, Field<D> row_sum) : scene(s), body(scene.body), G_(std::move(row_sum))
     {
-        if (G_.size() != body.size() || bonds.nodes() != body.size())
+        if (G_.size() != body.size() || scene.bonds.nodes() != body.size())
             throw std::invalid_argument("DynamicRelaxation: body, bonds and stiffness bound sizes differ");
-        reject_unwrapped_rate_form(model, "DynamicRelaxation");
+        reject_unwrapped_rate_form(scene.model, "DynamicRelaxation");
     }
+    DynamicRelaxation(const Body<D>& body, Bonds& bonds, Model& model) : DynamicRelaxation(Scene<D, Model>(body, bonds, model)) {}
+    DynamicRelaxation(const Body<D>& body, Bonds& bonds, Model& model, Field<D> row_sum)
+        : DynamicRelaxation(Scene<D, Model>(body, bonds, model), std::move(row_sum)) {}
 
     // Relaxes u (in/out: the initial guess, e.g. the previous load level) to the equilibrium at
     // t_load: prescribed displacements g(t_load), body forces at t_load.
@@ -82,13 +88,14 @@ public:
         if (!(tol > 0)) throw std::invalid_argument("DynamicRelaxation: tolerance must be positive");
         if (max_iter < 0) throw std::invalid_argument("DynamicRelaxation: max_iter must be >= 0");
         if (u.size() != body.size()) throw std::invalid_argument("DynamicRelaxation: displacement field size differs from the body");
+        if (scene.has_damage_rule()) throw std::invalid_argument("DynamicRelaxation: no bond breaking during a solve (header)");
         const io::Timer timer;
         const std::size_t n = body.size();
         constexpr double dt = 1;  // fictitious time step (K&M: any value, lambda scales with dt^2)
         setup(u, bc, t_load);
         for (int d = 0; d < D; ++d) v_.c[d].assign(n, 0.0);
         RelaxationResult r;
-        double res = evaluate(r);
+        double res = evaluate(u, r);
         r.history.push_back({0, res});
         // Start-up, K&M eq. 14: v^{1/2} = dt F^0 / (2 lambda).
         for_free([&](int d, std::size_t i) { v_.c[d][i] = dt * F_.c[d][i] / (2 * lambda_.c[d][i]); });
@@ -97,8 +104,7 @@ public:
             for_free([&](int d, std::size_t i) { u.c[d][i] += dt * v_.c[d][i]; });  // eq. 13
             for (int d = 0; d < D; ++d) F_prev_.c[d] = F_.c[d];
             ++it;
-            add_fields(body.x, u, y_);
-            res = evaluate(r);
+            res = evaluate(u, r);
             if (history_every > 0 && it % history_every == 0) r.history.push_back({it, res});
             // Rayleigh quotient with the diagonal local stiffness (eqs. 15, 16).
             double num = 0, den = 0;
@@ -152,7 +158,7 @@ public:
     }
 
 private:
-    Field<D> G_, lambda_, v_, F_, F_prev_, f_, b_, y_;
+    Field<D> G_, lambda_, v_, F_, F_prev_, f_, b_;
     std::vector<std::uint8_t> constrained_;
 
     template <class Fn>
@@ -188,13 +194,12 @@ private:
         F_prev_.resize(n);
         b_.resize(n);
         bc.external(t_load, b_);
-        add_fields(body.x, u, y_);
     }
 
-    // F = f_int(y) + b on free components (0 on constrained ones); returns the relative residual.
-    double evaluate(RelaxationResult& r)
+    // F = f_int(x + u) + b on free components (0 on constrained ones); returns the relative residual.
+    double evaluate(const Field<D>& u, RelaxationResult& r)
     {
-        internal_force(model, bonds, y_, f_);
+        scene.internal_forces(u, u, load_step, f_);
         double rr = 0, bb = 0, reac = 0, ff = 0;
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < body.size(); ++i) {

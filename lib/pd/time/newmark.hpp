@@ -18,8 +18,9 @@
 // takes g(t_{n+1}), a prescribed velocity u_n + dt/2 (g(t_n) + g(t_{n+1})); constrained velocities
 // follow the trapezoidal rule; energies and the guard (check_energy, Unstable) are the same. A step
 // whose Newton iterations fail throws std::runtime_error with the reason (never silently).
-// No bond breaking: Explicit's damage pass is not offered here (a bond that breaks inside a step
-// changes the tangent discontinuously; not needed by the elastic cases that use Newmark).
+// Forces come from the scene (scene.hpp), as in Explicit. No bond breaking: a scene with a damage
+// rule is refused (a bond that breaks inside a step changes the tangent discontinuously; not needed
+// by the elastic cases that use Newmark); no history models (the tangent is of the elastic model).
 #pragma once
 #include "pd/bc/boundary.hpp"
 #include "pd/bond_loop.hpp"
@@ -40,10 +41,10 @@ namespace pd {
 
 template <int D, class Model>
 class Newmark {
+    static_assert(!HistoryModel<Model, D>, "Newmark: no history models (header)");
+
 public:
-    const Body<D>& body;
-    Bonds& bonds;
-    Model& model;
+    Scene<D, Model> scene;            // forces (scene.hpp): body, bonds, model
     std::vector<double> rho;          // density per node [kg/m^3]
     Boundary<D> boundary;
     double energy_limit = 10;         // stability guard factor (verlet.hpp)
@@ -56,31 +57,31 @@ public:
     double t = 0;                     // [s]
     long step_count = 0, iterations = 0, factorisations = 0;
 
-    Newmark(const Body<D>& body, Bonds& bonds, Model& model, double density)
-        : body(body), bonds(bonds), model(model), rho(body.size(), density), u(body.size()), v(body.size()), a(body.size()),
-          y_(body.size()), f_(body.size()), b_(body.size())
+    Newmark(const Scene<D, Model>& s, double density)
+        : scene(s), rho(s.body.size(), density), u(s.body.size()), v(s.body.size()), a(s.body.size()), f_(s.body.size()), b_(s.body.size())
     {
         if (!(density > 0)) throw std::invalid_argument("density rho must be positive");
-        reject_unwrapped_rate_form(model, "Newmark");
+        reject_unwrapped_rate_form(s.model, "Newmark");
     }
+    Newmark(const Body<D>& body, Bonds& bonds, Model& model, double density) : Newmark(Scene<D, Model>(body, bonds, model), density) {}
 
     // Call after initial u, v and the boundary are set: forces and accelerations at t.
     void start()
     {
-        const std::size_t n = body.size();
+        if (scene.has_damage_rule()) throw std::invalid_argument("Newmark: no bond breaking (header); use pd::Explicit with a damage rule");
+        const std::size_t n = body().size();
         std::vector<std::uint8_t> constrained(n * D, 0);
         for (const auto& p : boundary.prescribed)
             for (int i : p.nodes) constrained[i * D + p.component] = 1;
         dofs_ = DofMap(constrained);
-        add_fields(body.x, u, y_);
-        internal_force(model, bonds, y_, f_);
+        scene.internal_forces(u, u, 0.0, f_);
         boundary.external(t, b_);
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < n; ++i) a.c[d][i] = free(i, d) ? (f_.c[d][i] + b_.c[d][i]) / rho[i] : 0.0;
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
         double mass = 0;
-        for (std::size_t i = 0; i < n; ++i) mass += rho[i] * body.volume[i];
+        for (std::size_t i = 0; i < n; ++i) mass += rho[i] * body().volume[i];
         energy_floor_ = 0.5 * mass * roundoff_speed * roundoff_speed;
     }
 
@@ -88,7 +89,7 @@ public:
     {
         if (!(dt > 0)) throw std::invalid_argument("time step dt must be positive");
         if (dofs_.index.empty()) throw std::logic_error("Newmark: call start() before step()");
-        const std::size_t n = body.size();
+        const std::size_t n = body().size();
         const Field<D> u_n = u, v_n = v, a_n = a, f_n = f_, b_n = b_;
         const double kinetic_constrained_old = constrained_kinetic();
         for (int d = 0; d < D; ++d)
@@ -108,7 +109,7 @@ public:
             if (res <= tol) break;
             if (it == max_iter) fail("Newton iterations did not converge (relative residual " + std::to_string(res) + ")", it);
             if (res > reuse_ratio * prev) stale_ = true;
-            if (stale_) factorise(c, dt);
+            if (stale_) factorise(c, dt, u_n);
             Eigen::VectorXd du;
             std::string failure;
             if (!solver_.solve(r_, du, failure)) fail(failure, it);
@@ -131,14 +132,14 @@ public:
             for (std::size_t i = 0; i < n; ++i) {
                 const double du = u.c[d][i] - u_n.c[d][i];
                 const double load = free(i, d) ? 0.5 * (b_.c[d][i] + b_n.c[d][i]) : -0.5 * (f_.c[d][i] + f_n.c[d][i]);
-                work += load * du * body.volume[i];
+                work += load * du * body().volume[i];
             }
         external_work_ += work + constrained_kinetic() - kinetic_constrained_old;
     }
 
     Energies energies()  // call after start() or step(): the model's state is at y
     {
-        return detail::body_energies(model, bonds, body, y_, v, rho, external_work_);
+        return detail::body_energies(scene.model, scene.bonds, body(), scene.positions(), v, rho, external_work_);
     }
 
     // The guard of verlet.hpp: throws Unstable when KE + SE exceeds energy_limit x (initial + |W_ext|).
@@ -159,7 +160,7 @@ public:
     double initial_energy() const { return initial_energy_; }
 
 private:
-    Field<D> y_, f_, b_;
+    Field<D> f_, b_;
     DofMap dofs_;
     Colouring colouring_;
     SparseSolver solver_;
@@ -170,19 +171,19 @@ private:
     static constexpr double roundoff_speed = 1e-10;  // [m/s], as verlet.hpp
 
     bool free(std::size_t i, int d) const { return dofs_.index[i * D + d] >= 0; }
+    const Body<D>& body() const { return scene.body; }
 
     // r = (f + b - rho a_{n+1}) V on the free dofs; relative residual (header).
     double residual(const Field<D>& u_n, const Field<D>& v_n, const Field<D>& a_n, double c, double dt)
     {
-        add_fields(body.x, u, y_);
-        internal_force(model, bonds, y_, f_);
+        scene.internal_forces(u_n, u, dt, f_);
         r_.setZero(dofs_.free);
         double rr = 0, ff = 0, ma = 0, bb = 0, mv = 0, man = 0;
-        for (std::size_t i = 0; i < body.size(); ++i)
+        for (std::size_t i = 0; i < body().size(); ++i)
             for (int d = 0; d < D; ++d) {
                 const int q = dofs_.index[i * D + d];
                 if (q < 0) continue;
-                const double V = body.volume[i];
+                const double V = body().volume[i];
                 const double acc = c * (u.c[d][i] - u_n.c[d][i] - dt * v_n.c[d][i]) - a_n.c[d][i];
                 r_[q] = (f_.c[d][i] + b_.c[d][i] - rho[i] * acc) * V;
                 rr += r_[q] * r_[q];
@@ -196,17 +197,17 @@ private:
         return scale > 0 ? std::sqrt(rr) / scale : 0.0;
     }
 
-    // K_eff = K + c diag(rho V) at the current y, factorised.
-    void factorise(double c, double dt)
+    // K_eff = K + c diag(rho V) at the current y (the step from u_n), factorised.
+    void factorise(double c, double dt, const Field<D>& u_n)
     {
-        if (colouring_.colour.empty() && !std::is_same_v<Model, PMB>) colouring_ = colour_bond_graph(bonds, tangent_reach<Model>());
-        Eigen::SparseMatrix<double> K = tangent(model, body, bonds, y_, dofs_, colouring_);
-        for (std::size_t i = 0; i < body.size(); ++i)
+        if (colouring_.colour.empty() && !std::is_same_v<Model, PMB>) colouring_ = colour_bond_graph(scene.bonds, tangent_reach<Model>());
+        Eigen::SparseMatrix<double> K = tangent(scene.model, body(), scene.bonds, scene.positions(), dofs_, colouring_);
+        for (std::size_t i = 0; i < body().size(); ++i)
             for (int d = 0; d < D; ++d)
-                if (const int q = dofs_.index[i * D + d]; q >= 0) K.coeffRef(q, q) += c * rho[i] * body.volume[i];
+                if (const int q = dofs_.index[i * D + d]; q >= 0) K.coeffRef(q, q) += c * rho[i] * body().volume[i];
         std::string failure;
         if (!solver_.factorise(K, linear, 1e-12, 0, failure)) fail(failure, 0);
-        internal_force(model, bonds, y_, f_);  // the finite-difference tangent leaves the model's state perturbed
+        scene.internal_forces(u_n, u, dt, f_);  // the finite-difference tangent leaves the model's state perturbed
         ++factorisations;
         stale_ = false;
         dt_factor_ = dt;
@@ -221,7 +222,7 @@ private:
 
     double constrained_kinetic() const  // [J]
     {
-        return detail::constrained_kinetic(body, v, rho, [&](std::size_t i, int d) { return !free(i, d); });
+        return detail::constrained_kinetic(body(), v, rho, [&](std::size_t i, int d) { return !free(i, d); });
     }
 };
 
