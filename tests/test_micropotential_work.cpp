@@ -1,9 +1,13 @@
 // Critical-micropotential damage (damage/micropotential.hpp), the work integral and the breaking
-// test: w of every mechanical model (elastic, plastic, viscoelastic; 3D correspondence on its AVX2
-// path with and without hourglass control, with the hourglass work left out, and with per-node J_C
-// ratios) against the trapezoidal work sum from both ends of each pair, pairs broken during the
-// loading included; the same w for 1 and 2 threads; apply() breaks exactly the pairs at or above w_C
-// (correspondence); a body without bonds runs. Closed forms and constants: test_micropotential.cpp.
+// test. Accuracy against an independent reference: correspondence on an affine loading path, w of
+// every pair against its closed form (written out below from the bond list, no library call).
+// Consistency (not an independent reference: both sides use the model under test): w of every
+// mechanical model (elastic, plastic, viscoelastic; 3D correspondence on its AVX2 path with and
+// without hourglass control, with the hourglass work left out, and with per-node J_C ratios), summed
+// inside the force pass, against the trapezoidal sum of the model's own public per-bond force from
+// both ends of each pair, pairs broken during the loading included; the same w for 1 and 2 threads;
+// apply() breaks exactly the pairs at or above w_C (correspondence); a body without bonds runs.
+// Closed forms of PMB and the constants: test_micropotential.cpp.
 #include "pd/damage/micropotential.hpp"
 #include "pd/models/plastic_correspondence.hpp"
 #include "pd/models/plastic_lps.hpp"
@@ -102,8 +106,9 @@ Bonds cut_bonds(const Body<3>& body)  // every 7th pair broken from the start
 }
 }  // namespace
 
-// Every model's w against the reference sum from both ends of each pair (so w_ij = w_ji within
-// round-off of the two ends' forces), and the same w for 1 and 2 threads, bit for bit. Tolerance
+// Consistency (header): every model's w from the force pass against the sum of its per-bond force
+// from both ends of each pair (so w_ij = w_ji within round-off of the two ends' forces), and the same
+// w for 1 and 2 threads, bit for bit. Tolerance
 // 1e-12 of the largest w: the force pass and the public per-bond functions add the same terms in
 // different orders (measured: 4e-16 for the correspondence models, up to 2.7e-13 for LPS, whose
 // bond_scalar regroups the node terms; printed by the test).
@@ -154,6 +159,64 @@ TEST(Micropotential, MatchesTheWorkSumFromBothEndsAndIsThreadIndependent)
     check(PlasticPALS({.material = steel}, body, b, law), "plastic PALS");
     check(PlasticCorrespondence({steel, Correspondence<3>::Law::linear, 0.02}, body, b, law), "plastic correspondence");
     check(ViscoelasticLPS({{.material = steel, .dim = 3}, 1.0, step_s}, b), "viscoelastic LPS");
+}
+
+// An independent reference (closed form, no call of the code under test): correspondence, linear law,
+// on the affine path y(s) = (I + s H) x, s = 0 .. 1. F_i = I + s H exactly at every node whose K is
+// regular, whatever its family, so P_i = sigma(s) = s sigma_H (sigma_H = lambda tr(sym H) I + 2 G sym H)
+// and the hourglass term vanishes (Y = F xi). The force density on i from bond k, f_k = omega_k V_k
+// s sigma_H (K_i^-1 + K_j^-1) xi, is linear in s and dY = H xi ds, so the work of the pair is
+//   w_ij = int_0^1 f_k . H xi ds / V_k = omega_k/2 (sigma_H (K_i^-1 + K_j^-1) xi) . (H xi),
+// and the trapezoidal sum of the header is exact for any number of steps. K_i = sum over i's intact
+// bonds of omega xi (x) xi V is summed here from the bond list; broken pairs keep w = 0.
+// Tolerance 1e-10 of the largest w: F from the family sums carries round-off ~1e-15 against s H ~ 1e-3,
+// i.e. ~1e-12 of w (measured 1.1e-12, printed by the test).
+TEST(Micropotential, CorrespondenceWorkOfAnAffinePathIsTheClosedForm)
+{
+    using Mat = Eigen::Matrix3d;
+    const auto body = loaded_box();
+    Bonds b = cut_bonds(body);
+    Mat H;
+    H << 1.0e-3, 0.4e-3, -0.2e-3, -0.3e-3, 0.5e-3, 0.6e-3, 0.1e-3, -0.7e-3, -0.8e-3;
+    const double K = steel.K, G = steel.G, lambda = K - 2 * G / 3;
+    const Mat eps_H = 0.5 * (H + H.transpose());
+    const Mat sigma_H = lambda * eps_H.trace() * Mat::Identity() + 2 * G * eps_H;
+    auto xi_of = [&](std::size_t i, int j) {
+        return Eigen::Vector3d(body.x.c[0][j] - body.x.c[0][i], body.x.c[1][j] - body.x.c[1][i], body.x.c[2][j] - body.x.c[2][i]);
+    };
+    std::vector<Mat> Kinv(body.size());
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        Mat Ki = Mat::Zero();
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
+            if (b.intact[k]) Ki += b.omega[k] * b.volume[k] * xi_of(i, b.partner[k]) * xi_of(i, b.partner[k]).transpose();
+        ASSERT_GT(std::abs(Ki.determinant()), 1e-6 * std::pow(Ki.trace() / 3, 3)) << "node " << i << ": the closed form needs a regular K";
+        Kinv[i] = Ki.inverse();
+    }
+    Correspondence<3> model = make_corr<3>(0.02)(body, b);
+    CriticalMicropotential<3> mp;
+    const int steps = 4;
+    Field<3> f;
+    for (int m = 0; m <= steps; ++m) {
+        const double s = double(m) / steps;
+        Field<3> y = body.x;
+        for (std::size_t i = 0; i < body.size(); ++i)
+            for (int a = 0; a < 3; ++a)
+                for (int c = 0; c < 3; ++c) y.c[a][i] += s * H(a, c) * body.x.c[c][i];
+        internal_force(model, b, y, f, mp.bond_work<Correspondence<3>>(b));
+        mp.accumulate(model, b, y);
+    }
+    double wmax = 0, err = 0;
+    for (std::size_t i = 0; i < body.size(); ++i)
+        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+            const int j = b.partner[k];
+            const Eigen::Vector3d xi = xi_of(i, j);
+            const double w_ref = b.intact[k] ? 0.5 * b.omega[k] * (sigma_H * (Kinv[i] + Kinv[j]) * xi).dot(H * xi) : 0.0;
+            wmax = std::max(wmax, std::abs(w_ref));
+            err = std::max(err, std::abs(mp.work(b, k) - w_ref));
+        }
+    EXPECT_GT(wmax, 0.0);
+    EXPECT_LT(err, 1e-10 * wmax);
+    std::printf("affine path: largest w %.3e J/m^6, largest difference from the closed form %.2e of it\n", wmax, err / wmax);
 }
 
 // 2D correspondence takes the generic bond pass (the AVX2 family kernel is 3D only): w with and
