@@ -5,7 +5,8 @@
 # rho = 7850 kg/m^3, S velocity-Verlet steps, no bond breaking.
 #   ours:   pd_bench --what step (pd::Explicit::step: force + integration), PMB and LPS, T threads;
 #   LAMMPS: lmp (package PERI), peri/pmb (and peri/lps with --lammps-lps), 1 MPI rank, fix nve;
-#           time = "Loop time" of `run` (setup, i.e. bond-family construction, excluded).
+#           time = "Loop time" of `run` (setup, i.e. bond-family construction, excluded); a run
+#           whose compute damage/atom is not 0 throughout is refused (lammps_peri.in says why).
 # One bond update = one bond force evaluation in one step, bonds = ordered pairs i->j: LAMMPS'
 # fix PERI_NEIGH keeps every partner of every atom ("total # of bonds" in its log), and
 # pair peri/pmb visits each of them once per step, as we do. Both counts are printed and must
@@ -87,9 +88,12 @@ lammps() {
         -var c "$C" -var K "$K" -var G "$G" -var steps "$STEPS" -var repeat 1 > /dev/null
     awk -v style="$1" -v n="$2" -v steps="$STEPS" -v round="$3" -v load="$(load1)" '
         /total # of bonds =/ { bonds = $NF }
-        /^Loop time of/ { t = $4; atoms = $(NF - 1) }
+        /^Step / { thermo = 1; next }
+        /^Loop time of/ { t = $4; atoms = $(NF - 1); thermo = 0 }
+        thermo && NF == 4 && $3 + 0 > 0 { damaged = $3 }  # c_dmax of compute damage/atom (lammps_peri.in)
         END {
             if (t == "" || bonds == "") { print "lammps_side_by_side: no loop time in log" > "/dev/stderr"; exit 1 }
+            if (damaged != "") { print "lammps_side_by_side: LAMMPS " style " n " n ": bonds broke (max damage " damaged "), not a reference" > "/dev/stderr"; exit 1 }
             printf "lammps,%s,%s,%s,%s,%s,1,%.6f,%.4e,%s,%s\n", style, n, atoms, bonds, steps, t, bonds * steps / t, round, load
         }' "$log" >> "$RUNS"
 }
