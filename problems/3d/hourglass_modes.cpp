@@ -12,7 +12,10 @@
 // c = 18K/(pi delta^4) (reference/pmb_pair_stiffness.hpp), for the finite-difference assembly.
 // Test fields: problems/common/analysis/staggered_modes.hpp.
 // Compared: zero modes beyond the rigid ones (|lambda| < --zero-tol lambda_max); soft modes (below
-// 1/10 of the softest non-rigid LPS eigenvalue); the smallest non-rigid eigenvalues; Rayleigh
+// 1/10 of the softest non-rigid eigenvalue of the reference pair-spring matrix of the same body:
+// PMB springs of the same bulk modulus, c = 18 K/(pi delta^4) in 3D and 12 kappa/(pi h delta^3) in
+// plane strain, kappa = K + G/3, h the thickness; written out pair by pair in
+// reference/pmb_pair_stiffness.hpp, no library model); the smallest non-rigid eigenvalues; Rayleigh
 // quotients of the checkerboard u = (-1)^(a+b+c) e_x, plain and under a bubble envelope, and of
 // the bubble alone; the checkerboard energy density at full-family nodes (n >= 7); the share of
 // the enveloped staggered patterns (-1)^(k.a), k in {0,1}^D, inside the soft subspace.
@@ -31,6 +34,7 @@
 
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -38,7 +42,7 @@
 namespace {
 
 using Mat = Eigen::MatrixXd;
-constexpr double soft_factor = 0.1;  // soft mode: below this times the softest physical (LPS) mode
+constexpr double soft_factor = 0.1;  // soft mode: below this times the softest mode of the reference springs
 
 struct Modes : pd::StiffnessSpectrum {  // lambda, vectors, lambda_max, asymmetry, rigid_residual, rigid, negative
     std::string model;
@@ -125,58 +129,64 @@ static int run_case(int argc, char** argv)
         });
     };
 
-    // 3.-5. Models, FD stiffness, spectra. PMB also against its analytic pair-spring matrix; LPS
-    // whenever correspondence runs (the physical scale of "soft").
+    // 3. The reference pair-spring matrices (header) of the cube and the square; their softest
+    // non-rigid eigenvalue [N/m] is the physical scale of "soft" (6 rigid modes in 3D, 3 in 2D).
+    const pd::Body<2> square = pd::box<2>({{0, 0}}, {{std::max(n2, 1) * dx, std::max(n2, 1) * dx}}, dx, dx);
+    const Mat Ka = pd::ref::pmb_pair_stiffness(body.x.c, body.volume, delta, 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)));
+    double soft_scale[4] = {NAN, NAN, NAN, NAN};  // by dimension
+    soft_scale[3] = Eigen::SelfAdjointEigenSolver<Mat>(Ka, Eigen::EigenvaluesOnly).eigenvalues()(6);
+    if (n2 > 0) {
+        const std::array<std::vector<double>, 3> xs{square.x.c[0], square.x.c[1], std::vector<double>(square.size(), 0.0)};
+        const double kappa = mat.K + mat.G / 3;  // plane-strain 2D bulk modulus [Pa]
+        const Mat K3 = pd::ref::pmb_pair_stiffness(xs, square.volume, delta, 12 * kappa / (std::numbers::pi * dx * std::pow(delta, 3)));
+        Mat K2(2 * square.size(), 2 * square.size());  // the in-plane dofs
+        for (std::size_t i = 0; i < 2 * square.size(); ++i)
+            for (std::size_t j = 0; j < 2 * square.size(); ++j) K2(i, j) = K3(3 * (i / 2) + i % 2, 3 * (j / 2) + j % 2);
+        soft_scale[2] = Eigen::SelfAdjointEigenSolver<Mat>(K2, Eigen::EigenvaluesOnly).eigenvalues()(3);
+    }
+
+    // 4.-5. Models, FD stiffness, spectra. PMB also against the pair-spring matrix (its own model).
     double fd_error = NAN;
     if (wants("pmb")) {
         const Mat K = run_model("pmb", NAN, body, bonds);
-        const Mat Ka = pd::ref::pmb_pair_stiffness(body.x.c, body.volume, delta, 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)));
         fd_error = (K - Ka).norm() / Ka.norm();
     }
-    const bool lps_ref = wants("lps") || wants("correspondence");
-    if (lps_ref) run_model("lps", NAN, body, bonds);
+    if (wants("lps")) run_model("lps", NAN, body, bonds);
     if (wants("pals")) run_model("pals", NAN, body, bonds);
     for (double c : C_hg)
         if (wants("correspondence")) run_model("correspondence", c, body, bonds);
-    const pd::Body<2> square = pd::box<2>({{0, 0}}, {{std::max(n2, 1) * dx, std::max(n2, 1) * dx}}, dx, dx);
     const pd::Bonds b2 = pd::build_bonds(square, delta);
-    if (n2 > 0 && lps_ref) run_model("lps", NAN, square, b2);
+    if (n2 > 0 && wants("lps")) run_model("lps", NAN, square, b2);
     for (double c : C_hg)
         if (n2 > 0 && wants("correspondence")) run_model("correspondence", c, square, b2);
 
-    // 6. Tables, CSVs, checks. Soft modes: non-rigid eigenvalues below 1/10 of the first non-rigid
-    // LPS eigenvalue of the same dimension [N/m] (the softest physical mode of the same body).
-    auto lps_of = [&](int dim) -> const Modes* {
-        for (const Modes& md : modes)
-            if (md.dim == dim && md.model == "lps") return &md;
-        return nullptr;
-    };
-    for (Modes& md : modes)
-        if (const Modes* lps = lps_of(md.dim)) {
-            md.soft = 0;
-            for (int k = md.rigid; k < md.lambda.size(); ++k) md.soft += md.lambda(k) < soft_factor * lps->lambda(lps->rigid);
-            if (md.soft == 0) continue;
-            // The 2^D - 1 staggerings times D polarisations (3D: 21, 2D: 6), enveloped, projected on the soft modes.
-            const Mat Vs = md.vectors.middleCols(md.rigid, md.soft);
-            const double L = (md.dim == 3 ? n : n2) * dx;
-            double sum = 0;
-            int count = 0;
-            for (int k = 1; k < (1 << md.dim); ++k)
-                for (int pol = 0; pol < md.dim; ++pol, ++count) {
-                    const Eigen::VectorXd u = md.dim == 3 ? pd::staggered_pattern(body, L, 1, k, pol) : pd::staggered_pattern(square, L, 1, k, pol);
-                    sum += (Vs.transpose() * u).squaredNorm() / u.squaredNorm();
-                }
-            md.in_soft = sum / count;
-        }
+    // 6. Tables, CSVs, checks. Soft modes: non-rigid eigenvalues below 1/10 of the reference's
+    // softest non-rigid eigenvalue of the same dimension (step 3).
+    for (Modes& md : modes) {
+        md.soft = 0;
+        for (int k = md.rigid; k < md.lambda.size(); ++k) md.soft += md.lambda(k) < soft_factor * soft_scale[md.dim];
+        if (md.soft == 0) continue;
+        // The 2^D - 1 staggerings times D polarisations (3D: 21, 2D: 6), enveloped, projected on the soft modes.
+        const Mat Vs = md.vectors.middleCols(md.rigid, md.soft);
+        const double L = (md.dim == 3 ? n : n2) * dx;
+        double sum = 0;
+        int count = 0;
+        for (int k = 1; k < (1 << md.dim); ++k)
+            for (int pol = 0; pol < md.dim; ++pol, ++count) {
+                const Eigen::VectorXd u = md.dim == 3 ? pd::staggered_pattern(body, L, 1, k, pol) : pd::staggered_pattern(square, L, 1, k, pol);
+                sum += (Vs.transpose() * u).squaredNorm() / u.squaredNorm();
+            }
+        md.in_soft = sum / count;
+    }
     pd::io::CsvWriter csv(run.file("modes.csv"), {"dim", "model", "C_hg", "nodes", "dofs", "lambda_max_N_per_m", "zero_modes_extra",
                                               "negative_modes", "soft_modes", "lambda_r1_rel", "lambda_r2_rel", "lambda_r3_rel",
                                               "checker_rel", "checker_env_rel", "bubble_rel", "checker_interior_W_rel", "patterns_in_soft",
                                               "asymmetry", "rigid_residual", "wall_s"});
     pd::io::CsvWriter spectra(run.file("eigenvalues.csv"), {"dim", "model", "C_hg", "index", "lambda_N_per_m", "lambda_rel"});
     std::printf("\nzero: |lambda| < %.1e lambda_max beyond the rigid modes (3D 6, 2D 3); soft: below %.1f x the first non-rigid\n"
-                "LPS eigenvalue; r1..r3 = first non-rigid eigenvalues / lambda_max; checker, checker*env, bubble = Rayleigh\n"
+                "eigenvalue of the reference pair springs (3D %.4e N/m, 2D %.4e N/m); r1..r3 = first non-rigid eigenvalues / lambda_max; checker, checker*env, bubble = Rayleigh\n"
                 "quotients / lambda_max; W_int = checkerboard W at full-family nodes / (E (a/dx)^2 / 2)\n",
-                zero_tol, soft_factor);
+                zero_tol, soft_factor, soft_scale[3], soft_scale[2]);
     std::printf("%3s %-14s %5s %5s %10s %4s %3s %4s %9s %9s %9s %9s %9s %9s %9s %6s %8s %8s %6s\n", "dim", "model", "C_hg", "dofs",
                 "lam_max", "zero", "neg", "soft", "r1", "r2", "r3", "checker", "chk*env", "bubble", "W_int", "in_sft", "asym", "rigid", "wall_s");
     for (const Modes& md : modes) {
@@ -199,6 +209,8 @@ static int run_case(int argc, char** argv)
     // without control has soft modes, C_hg = 0.02 (where run) leaves none; where full-family nodes
     // exist (n >= 7) the checkerboard costs no correspondence energy there (W < 1e-12, round-off)
     // and at least 0.1 of E (a/dx)^2 / 2 in the other models.
+    run.summary({"soft_scale_3d", soft_scale[3], NAN, NAN, "N/m"});
+    if (n2 > 0) run.summary({"soft_scale_2d", soft_scale[2], NAN, NAN, "N/m"});
     if (!std::isnan(fd_error)) {
         run.summary({"pmb_fd_vs_analytic_rel", fd_error, 0, NAN, "-"});
         run.check(fd_error < 1e-8, "FD stiffness = analytic PMB matrix within 1e-8 (relative Frobenius)");
