@@ -8,8 +8,11 @@
 // each load step relaxed by ADR (time/dynamic_relaxation.hpp), then the plastic history committed.
 // Measured per step: engineering stress F/(l1 l3) (F the grip reaction), gauge strain between the
 // layers nearest L/2 -+ delta (eq. 4.37), at the mid-section centre node the equivalent stress
-// sigma_eff and plastic strain ep against the hardening curve A + B ep^n, and ep at a section
-// corner; ep across the mid-section at first yield there and at the end.
+// sigma_eff and plastic strain ep, and ep at a section corner; ep across the mid-section at first
+// yield there and at the end. Reference of the centre's sigma_eff: the classical uniaxial bar of
+// small-strain J2 at the measured gauge strain eps_g, eps_g = sigma/E + ((sigma - A)/B)^(1/n) once
+// yielded, solved by bisection here (uniaxial_j2_stress; no library law). That sigma_eff lies on
+// A + B ep^n at the node's own ep is a consistency check of the return, not an accuracy check.
 // Engineering yield: 0.2 % offset on the gauge curve with the slope of the first (elastic) step.
 // Run: jc_bar_3d [--model all|correspondence|lps|lps-scf|pals] [--cells 4] [--steps 200] [--strain 0.05]
 //      [--E --nu --A --B --n] [--C-hg 0.02] [--tol 1e-6] [--quick] [--check] [--out DIR]
@@ -40,11 +43,24 @@ struct Bar {
 
 struct Outcome {
     int steps_done = 0, yield_centre = -1, yield_corner = -1, yield_section = -1;  // first step with ep > 0
-    double E_init = NAN, offset_yield = NAN, sigma_eq = NAN, ep = NAN, sigma_eng = NAN, wall_s = 0;
+    double E_init = NAN, offset_yield = NAN, sigma_eq = NAN, ep = NAN, sigma_eng = NAN, eps_g = NAN, wall_s = 0;
     double corner_ratio = NAN;  // ep corner / ep centre at the first mid-section yield (1: uniform)
     long iterations = 0;
     std::string message = "completed";
 };
+
+// The classical reference (header): stress [Pa] of a uniaxial small-strain J2 bar with hardening
+// A + B ep^n at total strain eps: E eps below A, else the root of sigma/E + ((sigma - A)/B)^(1/n) = eps.
+double uniaxial_j2_stress(double E, double A, double B, double n, double eps)
+{
+    if (!(E * eps > A)) return E * eps;
+    double lo = A, hi = E * eps;  // the left side is below eps at lo, above it at hi
+    for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (mid / E + std::pow((mid - A) / B, 1 / n) > eps ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
 
 // Load steps with ADR and commit (header); writes curve and mid-section CSVs.
 template <class Model>
@@ -93,6 +109,7 @@ Outcome load(Model& model, const Bar& s, pd::Bonds& bonds, double strain, int st
         o.sigma_eq = p.sigma_eff[s.centre];
         curve.row({k, U, U / s.L, eps_g, o.sigma_eng, o.ep, o.sigma_eq, jc.hardening(o.ep), p.ep[s.corner], ep_mean, r.iterations});
         eng.push_back({eps_g, o.sigma_eng});
+        o.eps_g = eps_g;
         o.steps_done = k;
     }
     // 0.2 % offset yield on the gauge curve, slope of the first step (elastic), linear interpolation.
@@ -197,12 +214,13 @@ static int run_case(int argc, char** argv)
             o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
         }
         // 6. Compare, print, summary rows.
-        const double ref = jc.hardening(o.ep);  // hardening curve at the centre's ep [Pa]
+        const double ref = uniaxial_j2_stress(E, A, B, n_hard, o.eps_g);  // classical bar at the gauge strain [Pa]
         std::printf("%-15s %6d %9.3e %12.5e %12.5e %12.5e %10.4e %12.5e %8d %8d %7.4f %8.1f\n", name.c_str(), o.steps_done, o.ep, o.sigma_eq,
                     ref, o.E_init, o.offset_yield, o.sigma_eng, o.yield_centre, o.yield_corner, o.corner_ratio, o.wall_s);
         if (o.steps_done < steps) std::printf("    %s: %s\n", name.c_str(), o.message.c_str());
         std::fflush(stdout);
         run.summary({{"sigma_eq_centre_" + name, o.sigma_eq, ref, pd::io::relative_error(o.sigma_eq, ref), "Pa"},
+                     {"eps_gauge_last_" + name, o.eps_g, NAN, NAN, "-"},
                      {"ep_centre_" + name, o.ep, NAN, NAN, "-"},
                      {"offset_yield_" + name, o.offset_yield, A, pd::io::relative_error(o.offset_yield, A), "Pa"},
                      {"offset_yield_vs_curve_at_0.002_" + name, o.offset_yield, jc.hardening(0.002),
@@ -218,7 +236,8 @@ static int run_case(int argc, char** argv)
                      {"wall_" + name, o.wall_s, NAN, NAN, "s"}});
         run.check(o.steps_done == steps, name + ": all " + std::to_string(steps) + " load steps converged");
         // The centre yields in the run: the return then puts sigma_eff on the curve to the Newton round-off.
-        run.check(o.ep > 0 && pd::io::relative_error(o.sigma_eq, ref) < 1e-9, name + ": centre on the hardening curve (return consistency)");
+        run.check(o.ep > 0 && pd::io::relative_error(o.sigma_eq, jc.hardening(o.ep)) < 1e-9,
+                  name + ": centre yields, sigma_eff on A + B ep^n at its own ep (return consistency, not accuracy)");
         // Correspondence: uniform uniaxial stress in the gauge, so the offset yield is A + B 0.002^n
         // (+8 MPa = 1.5 % for Table 5.1) up to the gauge's plastic strain not being exactly 0.2 %
         // and the area change: 3 % allowed.
