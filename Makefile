@@ -4,7 +4,7 @@ TYPE ?= Release
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps build check verify cases bench sanitize clean
+.PHONY: all deps build check verify report cases bench sanitize clean
 
 all: build
 
@@ -20,6 +20,10 @@ check: build
 
 verify: build
 	@scripts/verify $(BUILD)
+	@$(BUILD)/bin/report_tables --write reports
+
+report: build
+	@$(BUILD)/bin/report_tables --write reports
 
 cases: build
 	@scripts/verify $(BUILD) --cases
