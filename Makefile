@@ -19,8 +19,7 @@ check: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
 
 verify: build
-	@scripts/verify $(BUILD)
-	@$(BUILD)/bin/report_tables --write reports
+	@scripts/verify $(BUILD); status=$$?; $(BUILD)/bin/report_tables --write reports; exit $$status
 
 report: build
 	@$(BUILD)/bin/report_tables --write reports
