@@ -113,11 +113,11 @@ public:
     const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
 
     // The scene's part of a checkpoint: the intact flags, the positions of the last evaluation, the
-    // damage rule's state, the heat component's and the model's. A model with history keeps its own by state(ar) (and may
-    // rebuild(bonds, y) what its last evaluation derived from it); a rate-form stress keeps its
-    // history by rate_state(ar); any other model is rebuilt on loading from the restored bonds and
-    // positions by the functions that built it (recompute after breaks, the point pass): bit for bit
-    // the same.
+    // damage rule's state, the heat component's and the model's. A model with history keeps its own
+    // by state(ar) (and may rebuild(bonds, y) what its last evaluation derived from it); a rate-form
+    // stress keeps its history by rate_state(ar); any other model is rebuilt on loading from the
+    // restored bonds and positions by the functions that built it (recompute after breaks, the point
+    // pass): bit for bit the same.
     void state(StateArchive& ar)
     {
         ar("bonds.intact", bonds.intact);
