@@ -1,7 +1,7 @@
 // PD plasticity models (models/plastic_lps.hpp, plastic_pals.hpp, plastic_correspondence.hpp) against the
-// classical small-strain J2 radial return, written out below (classical_j2: the Johnson-Cook flow
-// stress typed from spec/000b (5.64) and the scalar equation (5.21) solved by plain bisection; it
-// calls nothing of the library), spec/000b V7 identity test:
+// classical small-strain J2 radial return of reference/j2_plasticity.hpp (the Johnson-Cook flow stress
+// typed from spec/000b (5.64) and the scalar equation (5.21) solved by plain bisection; it calls
+// nothing of the library), spec/000b V7 identity test:
 //  - ordinary LPS J2: a node whose family is the 12 vertices of an icosahedron (a spherical
 //    5-design, so the 4th moments sum_k n n n n are isotropic and the PD deviatoric energy equals
 //    G dev(eps):dev(eps) for affine deformation) under a non-proportional affine history with a
@@ -22,6 +22,7 @@
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"
 #include "pd/time/verlet.hpp"
+#include "reference/j2_plasticity.hpp"
 
 #include <gtest/gtest.h>
 
@@ -59,47 +60,8 @@ Body<3> icosahedron(double r)
     return b;
 }
 
-// The classical reference: small-strain J2 with Johnson-Cook hardening at the reference temperature,
-// history (eps_p, ep). sigma_trial = K tr(eps) I + 2 G dev(eps - eps_p); yield check against
-// A + B ep^n (no rate factor, spec/000b sec. 2.4 step 4); the multiplier dl solves
-//   q_trial - 3 G dl = (A + B (ep + dl)^n) max(0, 1 + C ln(max(dl/dt, epdot0/1000)/epdot0))   (5.21)
-// by bisection on [0, q_trial/(3G)] to the last bit; s = s_trial (1 - 3 G dl / q_trial) (5.18)-(5.19),
-// eps_p += dl 3 s_trial / (2 q_trial) (5.9).
-struct ClassicalJ2 {
-    Mat3 stress = Mat3::Zero();
-    Mat3 eps_p = Mat3::Zero();  // plastic strain after the step [-]
-    double ep = 0, dl = 0;      // equivalent plastic strain after the step and its increment [-]
-};
-ClassicalJ2 classical_j2(double K, double G, const laws::JohnsonCook& jc, const Mat3& eps, const ClassicalJ2& n, double dt)
-{
-    const Mat3 I = Mat3::Identity();
-    const Mat3 e = eps - n.eps_p;
-    const Mat3 s_tr = 2 * G * (e - e.trace() / 3 * I);
-    const double q_tr = std::sqrt(1.5 * (s_tr.array() * s_tr.array()).sum());
-    ClassicalJ2 out{K * e.trace() * I + s_tr, n.eps_p, n.ep, 0};
-    auto hardening = [&](double ep) { return jc.A + jc.B * std::pow(ep, jc.n); };
-    if (!(q_tr > hardening(n.ep))) return out;
-    auto residual = [&](double dl) {
-        const double rate = std::max(dl / dt, 1e-3 * jc.epdot0);
-        return q_tr - 3 * G * dl - hardening(n.ep + dl) * std::max(0.0, 1 + jc.C * std::log(rate / jc.epdot0));
-    };
-    double lo = 0, hi = q_tr / (3 * G);  // residual(lo) > 0 >= residual(hi)
-    for (int it = 0; it < 2000 && hi - lo > 0; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        if (mid == lo || mid == hi) break;
-        (residual(mid) > 0 ? lo : hi) = mid;
-    }
-    out.dl = 0.5 * (lo + hi);
-    out.stress -= 3 * G * out.dl / q_tr * s_tr;
-    out.eps_p += 1.5 * out.dl / q_tr * s_tr;
-    out.ep += out.dl;
-    return out;
-}
-double von_mises(const Mat3& sigma)
-{
-    const Mat3 s = sigma - sigma.trace() / 3 * Mat3::Identity();
-    return std::sqrt(1.5 * (s.array() * s.array()).sum());
-}
+// The classical reference (reference/j2_plasticity.hpp) with the constants of a law.
+ref::Hardening hardening_of(const laws::JohnsonCook& jc) { return {jc.A, jc.B, jc.n, jc.C, jc.epdot0}; }
 
 // Strain of step k of a non-proportional history: uniaxial-type deviator, then shear, plus a
 // volumetric part [-]; amplitudes ~1e-6 (see the tolerance of the LPS test).
@@ -118,17 +80,17 @@ Mat3 history_strain(int k)
 template <class Model>
 void expect_classical_return(Model& model, const Body<3>& body, const Bonds& bonds, const laws::JohnsonCook& jc, std::size_t c = 0)
 {
-    ClassicalJ2 h;
+    ref::ClassicalJ2 h;
     Field<3> f;
     int plastic_steps = 0;
     for (int k = 1; k <= 12; ++k) {
         const Mat3 eps = history_strain(k);
         internal_force(model, bonds, affine(body, Mat3::Identity() + eps), f);
-        const ClassicalJ2 u = classical_j2(al.K, al.G, jc, eps, h, 1.0);
+        const ref::ClassicalJ2 u = ref::classical_j2(al.K, al.G, hardening_of(jc), eps, h, 1.0);
         // Tolerance: the PD extension |Y| - |xi| equals the linear n.eps.n |xi| only to O(eps)
         // (strains <= 1.4e-5; measured relative difference of sigma_eff <= 5e-7), which carries
         // into sigma_eff_trial and into dl (~1e-6).
-        EXPECT_NEAR(model.pts.sigma_eff[c], von_mises(u.stress), 5e-6 * von_mises(u.stress)) << "step " << k;
+        EXPECT_NEAR(model.pts.sigma_eff[c], ref::von_mises(u.stress), 5e-6 * ref::von_mises(u.stress)) << "step " << k;
         EXPECT_NEAR(model.pts.dlambda[c], u.dl, 5e-6 * 1e-6) << "step " << k;
         EXPECT_NEAR(model.pts.ep[c], u.ep, 5e-6 * (1e-6 + u.ep)) << "step " << k;
         plastic_steps += u.dl > 0;
@@ -211,14 +173,14 @@ TEST(PlasticCorrespondence, InteriorNodesReproduceThePointLaw)
         if (in) interior.push_back(static_cast<int>(i));
     }
     ASSERT_FALSE(interior.empty());
-    ClassicalJ2 h;
+    ref::ClassicalJ2 h;
     Field<3> f;
     for (int k = 1; k <= 10; ++k) {
         Mat3 eps = Mat3::Zero();
         eps(0, 0) = 2e-3 * std::min(k, 5);             // uniaxial strain, then
         eps(1, 2) = eps(2, 1) = 2e-3 * std::max(0, k - 5);  // shear
         internal_force(model, bonds, affine(body, Mat3::Identity() + eps), 1e-4, f);
-        const ClassicalJ2 u = classical_j2(al.K, al.G, jc, eps, h, 1e-4);  // at theta_ref (jc.m = 0: no softening)
+        const ref::ClassicalJ2 u = ref::classical_j2(al.K, al.G, hardening_of(jc), eps, h, 1e-4);  // at theta_ref (jc.m = 0: no softening)
         for (int i : interior) {
             // F exact for affine y on a full family: round-off of the family sums (1e-13 of F).
             EXPECT_LE((model.model.sigma[i] - u.stress).norm(), 1e-9 * u.stress.norm()) << "step " << k;

@@ -11,7 +11,7 @@
 // sigma_eff and plastic strain ep, and ep at a section corner; ep across the mid-section at first
 // yield there and at the end. Reference of the centre's sigma_eff: the classical uniaxial bar of
 // small-strain J2 at the measured gauge strain eps_g, eps_g = sigma/E + ((sigma - A)/B)^(1/n) once
-// yielded, solved by bisection here (uniaxial_j2_stress; no library law). That sigma_eff lies on
+// yielded (reference/j2_plasticity.hpp, no library law). That sigma_eff lies on
 // A + B ep^n at the node's own ep is a consistency check of the return, not an accuracy check.
 // Engineering yield: 0.2 % offset on the gauge curve with the slope of the first (elastic) step.
 // Run: jc_bar_3d [--model all|correspondence|lps|lps-scf|pals] [--cells 4] [--steps 200] [--strain 0.05]
@@ -27,6 +27,7 @@
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
+#include "reference/j2_plasticity.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -48,19 +49,6 @@ struct Outcome {
     long iterations = 0;
     std::string message = "completed";
 };
-
-// The classical reference (header): stress [Pa] of a uniaxial small-strain J2 bar with hardening
-// A + B ep^n at total strain eps: E eps below A, else the root of sigma/E + ((sigma - A)/B)^(1/n) = eps.
-double uniaxial_j2_stress(double E, double A, double B, double n, double eps)
-{
-    if (!(E * eps > A)) return E * eps;
-    double lo = A, hi = E * eps;  // the left side is below eps at lo, above it at hi
-    for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (mid / E + std::pow((mid - A) / B, 1 / n) > eps ? hi : lo) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
 
 // Load steps with ADR and commit (header); writes curve and mid-section CSVs.
 template <class Model>
@@ -214,7 +202,7 @@ static int run_case(int argc, char** argv)
             o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
         }
         // 6. Compare, print, summary rows.
-        const double ref = uniaxial_j2_stress(E, A, B, n_hard, o.eps_g);  // classical bar at the gauge strain [Pa]
+        const double ref = pd::ref::uniaxial_j2_stress(E, {.A = A, .B = B, .n = n_hard}, o.eps_g);  // classical bar at the gauge strain [Pa]
         std::printf("%-15s %6d %9.3e %12.5e %12.5e %12.5e %10.4e %12.5e %8d %8d %7.4f %8.1f\n", name.c_str(), o.steps_done, o.ep, o.sigma_eq,
                     ref, o.E_init, o.offset_yield, o.sigma_eng, o.yield_centre, o.yield_corner, o.corner_ratio, o.wall_s);
         if (o.steps_done < steps) std::printf("    %s: %s\n", name.c_str(), o.message.c_str());
