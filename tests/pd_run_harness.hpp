@@ -1,5 +1,5 @@
-// Runs build/bin/pd_run from a test: scratch files, the command line, captured stdout/stderr and the
-// exit status (shared by tests/test_pd_run.cpp and tests/test_pd_run_heat.cpp).
+// Runs build/bin/pd_run (or any executable of the build) from a test: scratch files, the command line,
+// captured stdout/stderr and the exit status (shared by the pd_run and driver tests).
 #pragma once
 #include "pd/io/csv.hpp"
 
@@ -40,21 +40,28 @@ struct Result {
     std::filesystem::path dir;  // --out folder
 };
 
-// Runs pd_run with `args` and --out base()/tag; stdout and stderr are captured.
-inline Result pd_run(const std::string& tag, const std::string& args)
+// Runs build/bin/<exe> with `args` and --out `out`; stdout and stderr are captured (in out + ".stdout",
+// ".stderr", beside the folder), with the exit status (-1 when it did not exit normally).
+inline Result run_program(const std::string& exe, const std::string& args, const std::filesystem::path& out)
 {
     Result r;
-    r.dir = base() / tag;
-    std::filesystem::remove_all(r.dir);
-    std::filesystem::create_directories(base());
-    const std::filesystem::path so = base() / (tag + ".stdout"), se = base() / (tag + ".stderr");
-    const std::string cmd = std::string(PD_BIN_DIR) + "/pd_run " + args + " --out " + r.dir.string() + " > " +
-                            so.string() + " 2> " + se.string();
+    r.dir = out;
+    const std::filesystem::path so = out.string() + ".stdout", se = out.string() + ".stderr";
+    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --out " + out.string() + " > " + so.string() + " 2> " +
+                            se.string();
     const int raw = std::system(cmd.c_str());
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     r.out = slurp(so);
     r.err = slurp(se);
     return r;
+}
+
+// Runs pd_run with `args` and --out base()/tag (removed first).
+inline Result pd_run(const std::string& tag, const std::string& args)
+{
+    std::filesystem::remove_all(base() / tag);
+    std::filesystem::create_directories(base());
+    return run_program("pd_run", args, base() / tag);
 }
 
 inline std::string num(double v) { return pd::io::format_double(v); }

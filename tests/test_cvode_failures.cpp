@@ -6,13 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
+#include "pd_run_harness.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -70,13 +67,8 @@ TEST(CvodeFailures, AFailureLaterInTheRunIsASolverFailureOfOneLine)
 // a conductivity of 1e25 W/(m K) leaves CVODE no step at t = 0 on the 1D bar.
 TEST(CvodeFailures, ADriverNamesTheOptionsOfTheTimeScale)
 {
-    const std::string err = testing::TempDir() + "cvode_driver.stderr";
-    const std::string cmd = std::string(PD_BIN_DIR) + "/agwai_bar_1d --quick --integrator cvode --k 1e25 --out " + testing::TempDir() +
-                            "cvode_driver > /dev/null 2> " + err;
-    const int raw = std::system(cmd.c_str());
-    std::ifstream in(err);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    EXPECT_EQ(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, 2) << text;
-    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
-    EXPECT_NE(text.find("error: options --k, --rho, --c, --length, --N, --m: CVODE"), std::string::npos) << text;
+    const pd_test::Result r = pd_test::run_program("agwai_bar_1d", "--quick --integrator cvode --k 1e25", testing::TempDir() + "cvode_driver");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("error: options --k, --rho, --c, --length, --N, --m: CVODE"), std::string::npos) << r.err;
 }

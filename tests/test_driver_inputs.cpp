@@ -2,6 +2,7 @@
 // option (DESIGN.md, "Problem drivers"). Runs the built executables.
 #include <gtest/gtest.h>
 
+#include "pd_run_harness.hpp"
 #include "scratch_dir.hpp"
 
 #include <cstdio>
@@ -15,21 +16,11 @@
 #include <sys/wait.h>
 
 namespace {
-struct Outcome {
-    int status;
-    std::string err;
-};
+using Outcome = pd_test::Result;
+// Runs a driver with --out in the scratch folder (pd_run_harness.hpp).
 Outcome run(const std::string& exe, const std::string& args)
 {
-    const std::string dir = pd_test::scratch_dir().string();
-    const std::string err_path = dir + "/driver_err.txt";
-    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --out " + dir +
-                            "/driver_out > /dev/null 2> " + err_path;
-    const int rc = std::system(cmd.c_str());
-    std::ifstream in(err_path);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, ss.str()};
+    return pd_test::run_program(exe, args, pd_test::scratch_dir() / "driver_out");
 }
 int lines(const std::string& s)
 {

@@ -28,18 +28,8 @@ namespace {
 namespace fs = std::filesystem;
 using pd_test::slurp;
 
-struct Outcome {
-    int status = -1;
-    std::string err;
-};
-
-Outcome run(const std::string& exe, const std::string& args, const fs::path& out)
-{
-    const fs::path se = out.string() + ".stderr";
-    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --out " + out.string() + " > /dev/null 2> " + se.string();
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(se)};
-}
+using Outcome = pd_test::Result;
+const auto run = pd_test::run_program;
 
 std::vector<std::string> split(const std::string& line)
 {

@@ -79,7 +79,6 @@ public:
 
     // Attaches the heat component (kept by reference; header).
     void set_heat(TemperatureField& field) { heat_ = &field; }
-    TemperatureField* heat() const { return heat_; }
     void advance_heat(long n, double dt)
     {
         if (heat_) heat_->follow(n, dt);

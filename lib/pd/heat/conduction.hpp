@@ -353,7 +353,6 @@ public:
 
     Conduction<Model>& conduction() { return conduction_; }
     const Model& model() const { return model_; }
-    HeatIntegrator integrator() const { return integrator_; }
     // Explicit Euler's critical step at the current theta [s] (conduction.hpp, Gershgorin bound).
     double critical_step() const { return thermal_critical_step(model_, bonds_, conduction_, theta); }
 

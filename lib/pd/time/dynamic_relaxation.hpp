@@ -62,7 +62,6 @@ template <int D, class Model>
 class DynamicRelaxation {
 public:
     Scene<D, Model> scene;     // forces (scene.hpp): body, bonds, model
-    const Body<D>& body;
     double safety = 1.2;       // lambda = safety * dt^2/4 * G (see header) [-]
     double load_step = 1;      // the step handed to a history model (header) [s]
     long history_every = 100;  // residual history stride [iterations]
@@ -71,9 +70,9 @@ public:
     // Density from stiffness_bound(model, bonds, x) (PMB, LPS, PALS, correspondence).
     explicit DynamicRelaxation(const Scene<D, Model>& s) : DynamicRelaxation(s, stiffness_bound(s.model, s.bonds, s.body.x)) {}
     // Density from given Gershgorin row sums G [N/m^5 in 3D], e.g. stiffness_bound_micromodulus.
-    DynamicRelaxation(const Scene<D, Model>& s, Field<D> row_sum) : scene(s), body(scene.body), G_(std::move(row_sum))
+    DynamicRelaxation(const Scene<D, Model>& s, Field<D> row_sum) : scene(s), G_(std::move(row_sum))
     {
-        if (G_.size() != body.size() || scene.bonds.nodes() != body.size())
+        if (G_.size() != body().size() || scene.bonds.nodes() != body().size())
             throw std::invalid_argument("DynamicRelaxation: body, bonds and stiffness bound sizes differ");
         reject_unwrapped_rate_form(scene.model, "DynamicRelaxation");
     }
@@ -87,10 +86,10 @@ public:
     {
         if (!(tol > 0)) throw std::invalid_argument("DynamicRelaxation: tolerance must be positive");
         if (max_iter < 0) throw std::invalid_argument("DynamicRelaxation: max_iter must be >= 0");
-        if (u.size() != body.size()) throw std::invalid_argument("DynamicRelaxation: displacement field size differs from the body");
+        if (u.size() != body().size()) throw std::invalid_argument("DynamicRelaxation: displacement field size differs from the body");
         if (scene.has_damage_rule()) throw std::invalid_argument("DynamicRelaxation: no bond breaking during a solve (header)");
         const io::Timer timer;
-        const std::size_t n = body.size();
+        const std::size_t n = body().size();
         constexpr double dt = 1;  // fictitious time step (K&M: any value, lambda scales with dt^2)
         setup(u, bc, t_load);
         for (int d = 0; d < D; ++d) v_.c[d].assign(n, 0.0);
@@ -152,26 +151,27 @@ public:
     {
         Vec<D> R{};
         for (int d = 0; d < D; ++d)
-            for (std::size_t i = 0; i < body.size(); ++i)
-                if (constrained_[i * D + d]) R[d] -= (f_.c[d][i] + b_.c[d][i]) * body.volume[i];
+            for (std::size_t i = 0; i < body().size(); ++i)
+                if (constrained_[i * D + d]) R[d] -= (f_.c[d][i] + b_.c[d][i]) * body().volume[i];
         return R;
     }
 
 private:
     Field<D> G_, lambda_, v_, F_, F_prev_, f_, b_;
+    const Body<D>& body() const { return scene.body; }
     std::vector<std::uint8_t> constrained_;
 
     template <class Fn>
     void for_free(Fn&& fn) const
     {
         for (int d = 0; d < D; ++d)
-            for (std::size_t i = 0; i < body.size(); ++i)
+            for (std::size_t i = 0; i < body().size(); ++i)
                 if (!constrained_[i * D + d]) fn(d, i);
     }
 
     void setup(Field<D>& u, const Boundary<D>& bc, double t_load)
     {
-        const std::size_t n = body.size();
+        const std::size_t n = body().size();
         constrained_.assign(n * D, 0);
         for (const auto& p : bc.prescribed) {
             if (p.kind != Prescribed::Kind::displacement)
@@ -202,8 +202,8 @@ private:
         scene.internal_forces(u, u, load_step, f_);
         double rr = 0, bb = 0, reac = 0, ff = 0;
         for (int d = 0; d < D; ++d)
-            for (std::size_t i = 0; i < body.size(); ++i) {
-                const double V = body.volume[i];
+            for (std::size_t i = 0; i < body().size(); ++i) {
+                const double V = body().volume[i];
                 const double Fi = f_.c[d][i] + b_.c[d][i];
                 bb += b_.c[d][i] * b_.c[d][i] * V * V;
                 ff += f_.c[d][i] * f_.c[d][i] * V * V;
