@@ -13,10 +13,11 @@ deps:
 
 build: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(TYPE) $(CMAKE_FLAGS) > /dev/null
-	@cmake --build $(BUILD) -j $(JOBS)
+	@scripts/run-logged build $(BUILD)/build.log cmake --build $(BUILD) -j $(JOBS)
 
 check: build
-	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 600
+	@echo "check: running the tests (about 2 minutes on 2 cores; full output in $(BUILD)/ctest.log)"
+	@scripts/run-logged test $(BUILD)/ctest.log ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 600
 
 verify: build
 	@scripts/verify $(BUILD); status=$$?; $(BUILD)/bin/report_tables --write reports; exit $$status
