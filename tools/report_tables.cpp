@@ -15,7 +15,8 @@
 // Usage: report_tables --check|--write PATH...  (files or folders: every *.md below them).
 //   --check  regenerates every marked table in memory and exits 1 naming the first page, line and
 //            table that differs from the file: a number edited by hand, or a CSV that changed or
-//            lost a row, fails (the ctest `report_tables`);
+//            lost a row, fails (the ctest `report_tables`); it also fails on a CSV below the folders
+//            that lost a number (ragged rows, or an empty field in a numeric column);
 //   --write  rewrites the marked tables in place from the CSVs (`make report`).
 // Bad markers, missing CSVs or columns: one line naming the page and line, exit 2.
 #include "pd/io/csv.hpp"
@@ -91,7 +92,11 @@ Marker parse_marker(const std::string& text, const fs::path& page, std::size_t l
 std::string cell(const std::string& field, const std::string& fmt, double scale)
 {
     double v = 0;
-    if (!pd::io::parse_double(field, v) || !std::isfinite(v)) return field;
+    if (!pd::io::parse_double(field, v) || !std::isfinite(v)) {  // text: a '|' would end the Markdown cell
+        std::string text;
+        for (char ch : field) text += ch == '|' ? std::string("\\|") : std::string(1, ch);
+        return text;
+    }
     char buf[64];
     std::snprintf(buf, sizeof buf, fmt.empty() ? "%.6g" : fmt.c_str(), v * scale);
     return buf;
@@ -138,6 +143,33 @@ std::vector<std::string> render(const Marker& m, const fs::path& page, std::size
     return out;
 }
 
+// A committed CSV that lost a number: rows of unequal length (read_csv throws), or an empty field in
+// a column whose other fields are all numbers. The ledger's own files, where an empty field means
+// "none", are checked by tools/ledger.cpp instead. Returns "" or a description.
+std::string damaged(const fs::path& csv)
+{
+    const std::string name = csv.filename().string();
+    if (name.rfind("ledger", 0) == 0 || name == "spec_cases.csv") return "";
+    pd::io::CsvTable t;
+    try {
+        t = pd::io::read_csv(csv);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    for (std::size_t c = 0; c < t.header.size(); ++c) {
+        long empty_line = 0;
+        bool numeric = true;
+        for (const pd::io::CsvRow& r : t.rows) {
+            double v = 0;
+            if (r.fields[c].empty()) empty_line = empty_line ? empty_line : r.line;
+            else numeric = numeric && pd::io::parse_double(r.fields[c], v);
+        }
+        if (empty_line && numeric)
+            return csv.string() + ":" + std::to_string(empty_line) + ": empty field in the numeric column '" + t.header[c] + "'";
+    }
+    return "";
+}
+
 // Regenerates the marked tables of one page; returns the new text and sets `first_diff` to a
 // description of the first table that differs ("" when none).
 std::string regenerate(const fs::path& page, std::string& first_diff)
@@ -176,11 +208,13 @@ int run(int argc, char** argv)
     if (argc < 3 || (std::string(argv[1]) != "--check" && std::string(argv[1]) != "--write"))
         throw std::invalid_argument("usage: report_tables --check|--write PATH... (pages or folders of pages)");
     const bool write = std::string(argv[1]) == "--write";
-    std::vector<fs::path> pages;
+    std::vector<fs::path> pages, csvs;
     for (int a = 2; a < argc; ++a) {
         if (fs::is_directory(argv[a])) {
-            for (const auto& e : fs::recursive_directory_iterator(argv[a]))
+            for (const auto& e : fs::recursive_directory_iterator(argv[a])) {
                 if (e.path().extension() == ".md") pages.push_back(e.path());
+                if (e.path().extension() == ".csv") csvs.push_back(e.path());
+            }
         } else if (fs::exists(argv[a])) {
             pages.emplace_back(argv[a]);
         } else {
@@ -202,9 +236,17 @@ int run(int argc, char** argv)
             std::fprintf(stderr, "report_tables: %s\n", diff.c_str());
         }
     }
-    std::printf("report_tables: %d generated tables in %zu pages, %d page(s) %s\n", tables, pages.size(), differing,
-                write ? "rewritten" : "differ from their CSVs");
-    return !write && differing > 0 ? 1 : 0;
+    std::sort(csvs.begin(), csvs.end());
+    int broken = 0;
+    for (const fs::path& csv : csvs) {
+        const std::string what = damaged(csv);
+        if (what.empty()) continue;
+        ++broken;
+        std::fprintf(stderr, "report_tables: %s\n", what.c_str());
+    }
+    std::printf("report_tables: %d generated tables in %zu pages, %d page(s) %s; %zu CSVs, %d damaged\n", tables, pages.size(),
+                differing, write ? "rewritten" : "differ from their CSVs", csvs.size(), broken);
+    return !write && (differing > 0 || broken > 0) ? 1 : 0;
 }
 
 }  // namespace

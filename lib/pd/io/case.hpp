@@ -153,13 +153,18 @@ public:
     // The summary as the drivers' table on stdout.
     void print_summary(int name_width, int digits = 6) const { pd::io::print_summary(rows_, name_width, digits); }
 
-    // Writes summary.csv (when there are rows), prints `verdict: PASS|FAIL: <headline>` and returns
+    // Writes summary.csv (when there are rows) and checks.csv (check,passed: every check of the run
+    // with 1 or 0, whether or not --check is given), prints `verdict: PASS|FAIL: <headline>` and returns
     // the exit status: 1 when --check is given and a check failed, else 0. A measured row whose value
     // is nan or inf throws NonFiniteResult naming it (status 3 with guarded_main), after summary.csv
     // is written; a quantity the run does not measure is a not_measured row (csv.hpp).
     [[gnu::format(printf, 2, 3)]] int finish(const char* headline, ...)
     {
         if (!rows_.empty()) write_summary(out_ / "summary.csv", rows_);
+        if (!checks_.list().empty()) {  // the --check list with its outcomes (the ledger reads it: tools/ledger.cpp)
+            CsvWriter csv(out_ / "checks.csv", {"check", "passed"});
+            for (const auto& [what, ok] : checks_.list()) csv.row({what, ok ? 1 : 0});
+        }
         checkpoints_.remove_all();  // the run is complete
         for (const SummaryRow& r : rows_)
             if (r.measured && !std::isfinite(r.value))

@@ -8,6 +8,8 @@
 
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pd::io {
 
@@ -17,11 +19,15 @@ public:
     {
         std::printf("check: %-72s %s\n", what.c_str(), ok ? "ok" : "FAILED");
         passed_ = passed_ && ok;
+        list_.emplace_back(what, ok);
     }
     bool passed() const { return passed_; }
+    // Every check so far, in order: (what, ok). Case::finish writes them to checks.csv.
+    const std::vector<std::pair<std::string, bool>>& list() const { return list_; }
 
 private:
     bool passed_ = true;
+    std::vector<std::pair<std::string, bool>> list_;
 };
 
 }  // namespace pd::io
