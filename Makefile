@@ -20,10 +20,10 @@ check: build
 	@scripts/run-logged test $(BUILD)/ctest.log ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 600
 
 verify: build
-	@scripts/verify $(BUILD); status=$$?; $(BUILD)/bin/ledger --write . && $(BUILD)/bin/report_tables --write reports; exit $$status
+	@scripts/verify $(BUILD); status=$$?; scripts/report $(BUILD); exit $$status
 
 report: build
-	@$(BUILD)/bin/ledger --write . && $(BUILD)/bin/report_tables --write reports
+	@scripts/report $(BUILD)
 
 cases: build
 	@scripts/verify $(BUILD) --cases
