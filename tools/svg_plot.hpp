@@ -87,13 +87,7 @@ struct Axis {
     }
 };
 
-inline std::string tick_label(double v)
-{
-    if (v == 0) return "0";
-    const double a = std::abs(v);
-    if (a >= 1e-3 && a < 1e5) return num(v, "%g");
-    return num(v, "%.0e");
-}
+inline std::string tick_label(double v) { return v == 0 ? "0" : num(v, "%.3g"); }  // 1.5e-04, 2.5e-05: steps of 1, 2, 5 x 10^k
 
 struct Chart {
     std::string title, xlabel, ylabel;  // labels carry their unit: "dx [m]"

@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdarg>
 #include <cstdio>
 #include <filesystem>
@@ -86,6 +87,8 @@ public:
             opt.add_int("stop-after", 0, "stop after this many steps, with a checkpoint, as on SIGINT (0: never)");
             for (const char* o : {"checkpoint-every", "stop-after"}) opt.require_at_least(o, 0);
         }
+        opt.add_string("params-only", "", "write the params.csv this run would record to FILE and exit without running");
+        opt.not_recorded("params-only");
         opt.require_range("threads", 0, max_threads());
         opt.parse(argc, argv);
         quick_ = opt.get_flag("quick");
@@ -93,6 +96,10 @@ public:
     }
     void start()
     {
+        if (const std::string params = opt.get_string("params-only"); !params.empty()) {  // nothing in --out is touched
+            opt.save_csv(params);
+            std::exit(0);
+        }
         out_ = opt.get_string("out");
         if (out_.empty()) opt.fail("option --out must not be empty");
         std::error_code ec;

@@ -38,6 +38,7 @@ struct Options::Entry {
     std::vector<std::string> allowed;  // String only; empty = any text
     std::string default_text;          // for --help
     bool given = false;
+    bool recorded = true;              // written by echo() and save_csv()
 
     std::string value_text() const
     {
@@ -302,16 +303,20 @@ bool Options::given(const std::string& name) const { return lookup(name).given; 
 void Options::echo(std::ostream& os) const
 {
     for (const auto& e : entries_) {
+        if (!e->recorded) continue;
         os << "  " << e->name << " = " << e->value_text();
         if (!e->unit.empty()) os << " [" << e->unit << "]";
         os << '\n';
     }
 }
 
+void Options::not_recorded(const std::string& name) { lookup(name).recorded = false; }
+
 void Options::save_csv(const std::filesystem::path& path) const
 {
     CsvWriter csv(path, {"option", "value", "unit"}, false);
-    for (const auto& e : entries_) csv.row_strings({e->name, e->value_text(), e->unit});
+    for (const auto& e : entries_)
+        if (e->recorded) csv.row_strings({e->name, e->value_text(), e->unit});
     csv.close();
 }
 

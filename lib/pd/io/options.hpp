@@ -100,6 +100,8 @@ public:
     // One line per option, in registration order: `  name = value [unit]` (no brackets when the
     // option has no unit). Doubles are written in the shortest form that reads back exactly.
     void echo(std::ostream& os) const;
+    // An option that does not change a run's results and is left out of echo() and save_csv().
+    void not_recorded(const std::string& name);
     // Writes the same content as CSV with header `option,value,unit`; creates parent folders.
     // Throws std::runtime_error if the file cannot be written.
     void save_csv(const std::filesystem::path& path) const;
