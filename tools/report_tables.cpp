@@ -8,6 +8,7 @@
 // Keys (space separated, no spaces inside a value):
 //   csv=PATH     the CSV, relative to the page's folder (required);
 //   rows=REGEX   keep the rows whose first field matches (ECMAScript, search; default all);
+//   where=LIST   and whose fields match too: COLUMN=REGEX separated by ';';
 //   cols=LIST    columns in order, each NAME or NAME:HEADER (underscores in HEADER become spaces;
 //                default every column under its own name);
 //   fmt=LIST     NAME:printf-format for numbers of that column (default %.6g; nan/inf as written);
@@ -40,6 +41,7 @@ namespace {
 
 struct Marker {
     std::string csv, rows;
+    std::vector<std::pair<std::string, std::string>> where;  // (column, regex)
     std::vector<std::pair<std::string, std::string>> cols;  // (name, header)
     std::map<std::string, std::string> fmt;
     std::map<std::string, double> scale;
@@ -74,6 +76,13 @@ Marker parse_marker(const std::string& text, const fs::path& page, std::size_t l
             m.csv = value;
         } else if (key == "rows") {
             m.rows = value;
+        } else if (key == "where") {
+            std::stringstream ws(value);
+            for (std::string f; std::getline(ws, f, ';');) {
+                const std::size_t e = f.find('=');
+                if (e == std::string::npos) bad(page, line, "table marker: where '" + f + "' is not COLUMN=REGEX");
+                m.where.emplace_back(f.substr(0, e), f.substr(e + 1));
+            }
         } else if (key == "cols") {
             m.cols = pairs(value);
         } else if (key == "fmt") {
@@ -82,7 +91,7 @@ Marker parse_marker(const std::string& text, const fs::path& page, std::size_t l
             for (auto& [k, v] : pairs(value))
                 if (!pd::io::parse_double(v, m.scale[k])) bad(page, line, "table marker: scale of '" + k + "' is not a number");
         } else {
-            bad(page, line, "table marker: unknown key '" + key + "' (csv, rows, cols, fmt, scale)");
+            bad(page, line, "table marker: unknown key '" + key + "' (csv, rows, where, cols, fmt, scale)");
         }
     }
     if (m.csv.empty()) bad(page, line, "table marker: csv= is required");
@@ -126,8 +135,16 @@ std::vector<std::string> render(const Marker& m, const fs::path& page, std::size
     }
     std::vector<std::string> out{head, rule};
     const std::regex keep(m.rows.empty() ? std::string(".*") : m.rows);
+    std::vector<std::pair<std::size_t, std::regex>> where;
+    for (const auto& [col, re] : m.where) {
+        if (!t.has_column(col)) bad(page, line, "table marker: " + csv.string() + " has no column '" + col + "'");
+        where.emplace_back(t.column(col), std::regex(re));
+    }
     for (const pd::io::CsvRow& r : t.rows) {
         if (!std::regex_search(r.fields.at(0), keep)) continue;
+        bool pass = true;
+        for (const auto& [c, re] : where) pass = pass && std::regex_search(r.fields.at(c), re);
+        if (!pass) continue;
         std::string row = "|";
         for (std::size_t c = 0; c < cols.size(); ++c) {
             const std::string& name = cols[c].first;
