@@ -23,6 +23,7 @@
 // The note column (partial coverage, what is left) does not change the status.
 // Usage: ledger --check|--write ROOT [--spec DIR]. Exit 0 ok, 1 a generated file differs (--check),
 // 2 bad input (a case without a row, a row of no case, a missing CSV, row, column, test or driver).
+#include "csv_records.hpp"
 #include "pd/io/csv.hpp"
 
 #include <cmath>
@@ -38,32 +39,12 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using tools::records;
+using tools::slurp;
 
 namespace {
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
-
-std::string slurp(const fs::path& p)
-{
-    std::ifstream in(p);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-// Rows of a CSV as name -> field maps (header names), in file order.
-std::vector<std::map<std::string, std::string>> records(const fs::path& path)
-{
-    if (!fs::exists(path)) bad("no file " + path.string());
-    const pd::io::CsvTable t = pd::io::read_csv(path);
-    std::vector<std::map<std::string, std::string>> out;
-    for (const pd::io::CsvRow& r : t.rows) {
-        std::map<std::string, std::string> rec;
-        for (std::size_t c = 0; c < t.header.size(); ++c) rec[t.header[c]] = c < r.fields.size() ? r.fields[c] : "";
-        out.push_back(rec);
-    }
-    return out;
-}
 
 // The verification cases of the digests: `### V3 — title` or `**V3. title**` (file prefix before the
 // first `_<letter>`: 000a_theory... -> 000a, 001_004_crackpath -> 001_004).

@@ -17,6 +17,7 @@
 // in memory and exits 1 when it differs from the file, or when the page is not well-formed (tags
 // balanced), lacks a case of the ledger, or has a chart whose axis labels carry no unit; 2 on bad
 // input (a missing CSV or column, a label without unit, an unknown case).
+#include "csv_records.hpp"
 #include "pd/io/csv.hpp"
 #include "svg_plot.hpp"
 
@@ -32,24 +33,12 @@
 #include <vector>
 
 namespace fs = std::filesystem;
-using Record = std::map<std::string, std::string>;
+using tools::Record;
+using tools::records;
 
 namespace {
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
-
-std::vector<Record> records(const fs::path& path)
-{
-    if (!fs::exists(path)) bad("no file " + path.string());
-    const pd::io::CsvTable t = pd::io::read_csv(path);
-    std::vector<Record> out;
-    for (const pd::io::CsvRow& r : t.rows) {
-        Record rec;
-        for (std::size_t c = 0; c < t.header.size(); ++c) rec[t.header[c]] = r.fields[c];
-        out.push_back(rec);
-    }
-    return out;
-}
 
 std::vector<std::string> split(const std::string& s, char sep)
 {
@@ -229,15 +218,13 @@ int run(int argc, char** argv)
         std::fprintf(stderr, "report_index: the generated page is %s\n", why.c_str());
         return 1;
     }
-    std::ifstream in(out);
-    std::stringstream old;
-    old << in.rdbuf();
+    const std::string old = tools::slurp(out);
     const std::size_t charts = [&] {
         std::size_t n = 0;
         for (std::size_t p = html.find("<svg "); p != std::string::npos; p = html.find("<svg ", p + 1)) ++n;
         return n;
     }();
-    if (old.str() == html) {
+    if (old == html) {
         std::printf("report_index: %s is up to date (%zu charts)\n", out.string().c_str(), charts);
         return 0;
     }
