@@ -40,19 +40,25 @@ struct Result {
     std::filesystem::path dir;  // --out folder
 };
 
-// Runs build/bin/<exe> with `args` and --out `out`; stdout and stderr are captured (in out + ".stdout",
-// ".stderr", beside the folder), with the exit status (-1 when it did not exit normally).
-inline Result run_program(const std::string& exe, const std::string& args, const std::filesystem::path& out)
+// Runs build/bin/<exe> with `args`; stdout and stderr are captured (in capture + ".stdout", ".stderr"),
+// with the exit status (-1 when it did not exit normally).
+inline Result run_captured(const std::string& exe, const std::string& args, const std::filesystem::path& capture)
 {
     Result r;
-    r.dir = out;
-    const std::filesystem::path so = out.string() + ".stdout", se = out.string() + ".stderr";
-    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --out " + out.string() + " > " + so.string() + " 2> " +
-                            se.string();
+    const std::filesystem::path so = capture.string() + ".stdout", se = capture.string() + ".stderr";
+    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " > " + so.string() + " 2> " + se.string();
     const int raw = std::system(cmd.c_str());
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
     r.out = slurp(so);
     r.err = slurp(se);
+    return r;
+}
+
+// The same with --out `out` (the captured output beside the folder).
+inline Result run_program(const std::string& exe, const std::string& args, const std::filesystem::path& out)
+{
+    Result r = run_captured(exe, args + " --out " + out.string(), out);
+    r.dir = out;
     return r;
 }
 

@@ -34,38 +34,33 @@ std::string shell_quoted(const std::string& s)
     return q + "'";
 }
 
-// The params.csv `exe args --params-only FILE` records ("" and the message when it fails).
-std::string recorded(const std::string& exe, const std::string& args, const std::string& tag, std::string& error)
+// The params.csv that `exe args --params-only FILE` writes (its path; empty and `error` set on failure).
+fs::path recorded(const std::string& exe, const std::string& args, const std::string& tag, std::string& error)
 {
     const fs::path file = pd_test::base() / (tag + ".params.csv");
     fs::remove(file);
-    const std::string cmd = std::string(PD_BIN_DIR) + "/" + exe + " " + args + " --params-only " + file.string() + " > " +
-                            (pd_test::base() / (tag + ".out")).string() + " 2>&1";
-    const int raw = std::system(cmd.c_str());
-    if (!WIFEXITED(raw) || WEXITSTATUS(raw) != 0 || !fs::exists(file)) {
-        error = exe + " " + args + ": exit " + std::to_string(WIFEXITED(raw) ? WEXITSTATUS(raw) : -1) + ": " +
-                pd_test::slurp(pd_test::base() / (tag + ".out"));
-        return "";
+    const pd_test::Result r = pd_test::run_captured(exe, args + " --params-only " + file.string(), pd_test::base() / tag);
+    if (r.status != 0 || !fs::exists(file)) {
+        error = exe + " " + args + ": exit " + std::to_string(r.status) + ": " + r.err + r.out;
+        return {};
     }
-    return pd_test::slurp(file);
+    return file;
 }
 
-// option -> value of a params.csv text, without the options that cannot change a result (the step
+// option -> value of a params.csv, without the options that cannot change a result (the step
 // guard, threads, checkpointing, --check): a run made before such an option existed is not stale.
-std::map<std::string, std::string> results_options(const std::string& text, const fs::path& scratch)
+std::map<std::string, std::string> results_options(const fs::path& params)
 {
-    std::ofstream(scratch) << text;
+    static const std::set<std::string> neutral{"threads", "max-steps", "checkpoint-every", "resume", "stop-after", "check"};
     std::map<std::string, std::string> out;
-    for (const pd::io::CsvRow& r : pd::io::read_csv(scratch).rows) {
-        static const std::set<std::string> neutral{"threads", "max-steps", "checkpoint-every", "resume", "stop-after", "check"};
+    for (const pd::io::CsvRow& r : pd::io::read_csv(params).rows)
         if (!neutral.count(r.fields.at(0))) out[r.fields.at(0)] = r.fields.at(1);
-    }
     return out;
 }
 
-std::string differences(const std::string& committed, const std::string& now)
+std::string differences(const fs::path& committed, const fs::path& now)
 {
-    const auto a = results_options(committed, pd_test::base() / "a.csv"), b = results_options(now, pd_test::base() / "b.csv");
+    const auto a = results_options(committed), b = results_options(now);
     std::string d;
     for (const auto& [k, v] : a)
         if (!b.count(k)) d += " --" + k + " (gone)";
@@ -79,13 +74,13 @@ std::string differences(const std::string& committed, const std::string& now)
 // every option whose value differs from the driver's default (under that --quick); "" on failure.
 std::string arguments_of(const std::string& exe, const fs::path& params, const std::string& tag, std::string& error)
 {
-    const std::string committed = pd_test::slurp(params);
-    const bool quick = results_options(committed, pd_test::base() / (tag + ".c.csv")).at("quick") == "true";
-    const std::string defaults = recorded(exe, quick ? "--quick" : "", tag + ".defaults", error);
+    const auto committed = results_options(params);
+    const bool quick = committed.at("quick") == "true";
+    const fs::path defaults = recorded(exe, quick ? "--quick" : "", tag + ".defaults", error);
     if (!error.empty()) return "";
-    const auto def = results_options(defaults, pd_test::base() / (tag + ".d.csv"));
+    const auto def = results_options(defaults);
     std::string args = quick ? " --quick" : "";
-    for (const auto& [name, value] : results_options(committed, pd_test::base() / (tag + ".c.csv"))) {
+    for (const auto& [name, value] : committed) {
         if (name == "quick" || (def.count(name) && def.at(name) == value)) continue;
         args.append(" --").append(name);
         if (value != "true" && value != "false") args.append(" ").append(shell_quoted(value));
@@ -93,12 +88,20 @@ std::string arguments_of(const std::string& exe, const fs::path& params, const s
     return args;
 }
 
+// The drivers of this build (build/drivers.txt).
+std::vector<std::string> drivers()
+{
+    std::ifstream list(fs::path(PD_BIN_DIR).parent_path() / "drivers.txt");
+    std::vector<std::string> out;
+    for (std::string exe; list >> exe;) out.push_back(exe);
+    return out;
+}
+
 // problems/verify.txt: the extra standard runs (`exe:arg:arg...`, with --out) and the standard
 // arguments of drivers whose default is a full-size study (`standard:exe:arg...`).
 std::map<fs::path, std::pair<std::string, std::string>> standard_runs()
 {
     std::map<fs::path, std::pair<std::string, std::string>> runs;  // folder -> (exe, args)
-    std::ifstream drivers(fs::path(PD_BIN_DIR).parent_path() / "drivers.txt");
     std::map<std::string, std::string> standard_args;
     std::ifstream verify(source / "problems/verify.txt");
     std::vector<std::vector<std::string>> extra;
@@ -115,7 +118,7 @@ std::map<fs::path, std::pair<std::string, std::string>> standard_runs()
             extra.push_back(f);
         }
     }
-    for (std::string exe; drivers >> exe;) {
+    for (const std::string& exe : drivers()) {
         const std::size_t u = exe.rfind('_');
         runs[source / "reports" / exe.substr(u + 1) / exe.substr(0, u)] = {exe, standard_args[exe]};
     }
@@ -135,11 +138,8 @@ std::map<fs::path, std::pair<std::string, std::string>> standard_runs()
 
 TEST(ReportParams, EveryCommittedRunMatchesItsDriverOfThisBuild)
 {
-    std::set<std::string> exes;
-    {
-        std::ifstream drivers(fs::path(PD_BIN_DIR).parent_path() / "drivers.txt");
-        for (std::string exe; drivers >> exe;) exes.insert(exe);
-    }
+    const std::vector<std::string> list = drivers();
+    const std::set<std::string> exes(list.begin(), list.end());
     ASSERT_GT(exes.size(), 20u) << "drivers.txt of the build lists the drivers";
     std::vector<std::string> stale;
     int checked = 0;
@@ -155,9 +155,9 @@ TEST(ReportParams, EveryCommittedRunMatchesItsDriverOfThisBuild)
         }
         std::string error;
         const std::string tag = std::to_string(checked++), args = arguments_of(exe, e.path(), tag, error);
-        const std::string now = error.empty() ? recorded(exe, args, tag, error) : "";
+        const fs::path now = error.empty() ? recorded(exe, args, tag, error) : fs::path();
         if (!error.empty()) stale.push_back(rel.string() + ": its options do not run: " + error);
-        else if (const std::string d = differences(pd_test::slurp(e.path()), now); !d.empty())
+        else if (const std::string d = differences(e.path(), now); !d.empty())
             stale.push_back(rel.string() + ": " + exe + " records other options today:" + d);
     }
     EXPECT_GT(checked, 20);
@@ -168,9 +168,9 @@ TEST(ReportParams, EveryCommittedRunMatchesItsDriverOfThisBuild)
             continue;
         }
         std::string error;
-        const std::string now = recorded(run.first, run.second, "std" + std::to_string(checked++), error);
+        const fs::path now = recorded(run.first, run.second, "std" + std::to_string(checked++), error);
         if (!error.empty()) stale.push_back(error);
-        else if (const std::string d = differences(pd_test::slurp(params), now); !d.empty())
+        else if (const std::string d = differences(params, now); !d.empty())
             stale.push_back(fs::relative(params, source).string() + ": not the standard run " + run.first + run.second + ":" + d);
     }
     std::string all;

@@ -71,7 +71,7 @@ struct Axis {
         for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) out.push_back(std::abs(v) < 1e-12 * step ? 0 : v);
         return out;
     }
-    // Widens a degenerate range and rounds a log range out to whole decades where that is close.
+    // Widens a degenerate range (one value); pads a linear range by 5 % on each side.
     void settle()
     {
         if (log) {

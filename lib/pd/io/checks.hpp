@@ -6,6 +6,7 @@
 //     return opt.get_flag("check") && !check.passed() ? 1 : 0;
 #pragma once
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -18,15 +19,16 @@ public:
     void operator()(bool ok, const std::string& what)
     {
         std::printf("check: %-72s %s\n", what.c_str(), ok ? "ok" : "FAILED");
-        passed_ = passed_ && ok;
         list_.emplace_back(what, ok);
     }
-    bool passed() const { return passed_; }
+    bool passed() const
+    {
+        return std::all_of(list_.begin(), list_.end(), [](const auto& c) { return c.second; });
+    }
     // Every check so far, in order: (what, ok). Case::finish writes them to checks.csv.
     const std::vector<std::pair<std::string, bool>>& list() const { return list_; }
 
 private:
-    bool passed_ = true;
     std::vector<std::pair<std::string, bool>> list_;
 };
 
