@@ -2,8 +2,9 @@
 // counterpart of Peridigm's text-file discretisation. Not a verification case: it has no reference
 // and no --quick/--check; the physics it runs is verified by the tests of the library.
 // Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed, no_fail, T0, T_fixed] (pd/io/point_cloud.hpp).
-// Model PMB, LPS, LPS+SCF, PALS (3D) or correspondence (2D/3D, linear small-strain law, Littlewood
-// hourglass --hourglass C) (single material; block ids are passed through to the VTU files only), bond
+// Model PMB, LPS, LPS+SCF, PALS (3D) or correspondence (2D/3D, linear small-strain law or in 3D the
+// hypo-elastic one, Littlewood hourglass --hourglass C; --conventions peridigm and one option per
+// choice select Peridigm's forms, problems/pd_run_conventions.hpp) (single material; block ids are passed through to the VTU files only), bond
 // family |xi| <= delta, velocity Verlet (pd::Explicit), fixed points held at their initial
 // displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
 // c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14). --s0: critical-stretch bond breaking (spec/000c sec. 2.2)
@@ -27,6 +28,7 @@
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_checks.hpp"
+#include "pd_run_conventions.hpp"
 #include "pd_run_integrate.hpp"
 
 #include <algorithm>
@@ -80,8 +82,10 @@ int run(Run cfg, const pd::io::PointCloud& pc)
 
     // The model by name (models/registry.hpp); the surface correction of PMB (reference: its own
     // bulk energy) or LPS (reference: the classical energy); none: no change.
+    const Conventions& cv = cfg.conventions;
     const pd::ModelChoice choice{.name = cfg.model, .material = cfg.material, .plane = cfg.plane, .measure = cfg.measure,
-                                 .C_hg = cfg.hourglass};
+                                 .C_hg = cfg.hourglass, .hypoelastic = cv.hypoelastic, .hourglass_direction = cv.hourglass,
+                                 .rotation = cv.rotation, .pals_base = cv.pals_base};
     return pd::with_model(choice, body, bonds, [&](auto& model) {
         using Model = std::decay_t<decltype(model)>;
         if constexpr (std::is_same_v<Model, pd::Correspondence<D>>) warn_singular_shape_tensors(model, D);
@@ -137,6 +141,7 @@ int main(int argc, char** argv)
     const int& max_steps = opt.add_int("max-steps", 100000000, "refuse a run of more time steps than this (0 = no limit)");
     const std::string& mech = opt.add_string("mechanics", "on", "off: heat conduction only (needs --heat)", {"on", "off"});
     const pd_run::HeatOptions heat = pd_run::add_heat_options(opt, automatic);
+    const pd_run::ConventionOptions conventions = pd_run::add_convention_options(opt);
     for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt", "k", "cv", "dt-thermal", "s0"})
         opt.require_positive(name);
     opt.require_at_least("thermal-steps", 0);
@@ -160,7 +165,8 @@ int main(int argc, char** argv)
     if (surface == "energy" && model != "pmb" && model != "lps") fail("option --surface-correction energy applies to --model pmb or lps only");
     const bool mechanics = mech == "on";
     if (!mechanics && heat.heat == "none") fail("option --mechanics off needs --heat agwai|correspondence");
-    for (const char* name : {"E", "nu", "K", "G", "model", "hourglass", "surface-correction", "plane", "dt", "steps", "s0"})
+    for (const char* name : {"E", "nu", "K", "G", "model", "hourglass", "surface-correction", "plane", "dt", "steps", "s0", "conventions",
+                             "stress-law", "hourglass-direction", "rotation-increment", "rate-configuration", "start-stress", "pals-base"})
         if (!mechanics && opt.given(name)) fail(std::string("option --") + name + " applies to the mechanics (not --mechanics off)");
     pd_run::check_heat_options(opt, heat, mechanics, fail);
 
@@ -169,6 +175,7 @@ int main(int argc, char** argv)
     if (mechanics) cfg.material = elastic_constants(opt, dim, cfg.plane);
     cfg.model = model == "scf" ? "lps-scf" : model;
     cfg.hourglass = hourglass;
+    if (mechanics) cfg.conventions = pd_run::resolve_conventions(opt, conventions, cfg.model, dim, fail);
     cfg.surface = pd::parse_surface_correction(surface);
     if (hourglass < 0) fail("option --hourglass must be >= 0, got " + pd::io::format_shortest(hourglass));
     cfg.measure = dim == 2 ? thickness : dim == 1 ? area : 1.0;

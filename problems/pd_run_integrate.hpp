@@ -12,6 +12,7 @@
 #include "pd/models/surface_correction.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_checkpoint.hpp"
+#include "pd_run_conventions.hpp"
 #include "pd_run_heat.hpp"
 
 #include <algorithm>
@@ -31,6 +32,7 @@ constexpr double dt_safety = 0.5;  // Silling & Askari's normal safety factor (s
 struct Run {
     std::string model;
     double hourglass = 0;  // C_hg [-]
+    Conventions conventions;  // ours or Peridigm's, per choice (pd_run_conventions.hpp)
     pd::SurfaceCorrectionMethod surface = pd::SurfaceCorrectionMethod::none;
     pd::Elastic material;
     pd::Plane plane = pd::Plane::stress;
@@ -187,6 +189,8 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     damage.s0 = cfg.s0;
     if (pc.no_fail_count() > 0) damage.no_fail = pc.no_fail;
     if (cfg.s0 > 0) sim.scene.set_damage(damage);
+    sim.scene.rate_pairing = {.end_of_step = cfg.conventions.end_of_step,
+                              .initial_velocity_step = cfg.conventions.initial_velocity ? cfg.dt : 0.0};
     if (heat) {
         sim.scene.set_heat(heat->field());
         heat->last_step = heat->field().due(cfg.steps, cfg.dt);

@@ -19,6 +19,12 @@
 //        rule's bond work when it integrates one (bond_loop.hpp, BondWork);
 //     4. the rule records the evaluation (micropotential positions, singular nodes).
 //   It returns the ordered bonds broken in 1.
+//   start_forces(u, v, f)  the first evaluation of a run (the integrator's start): internal_forces from
+//     u_old = 0 with dt = 0, or, with rate_pairing.initial_velocity_step = dt > 0 (Peridigm's first
+//     evaluation), a rate-form stress advanced once by dt at y = x + u with the initial velocity v;
+//     the force of that stress is returned and the stress goes back to the reference state.
+//   rate_pairing.end_of_step  the rate-form update pairs v with the end-of-step configuration x + u
+//     (Peridigm) instead of the mid-step one; then L = Fdot F^-1 is not skew for a rigid rotation.
 //   commit()  the trial history becomes the committed one (HistoryModel).
 //   advance_heat(n, dt)  the heat component's thermal steps due after n mechanical steps of dt (none: no-op).
 // DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
@@ -52,6 +58,13 @@ concept DamageRule = requires(R& r, Bonds& b, const Field<D>& y, const Model& m)
 template <class T>
 concept HasState = requires(T& t, StateArchive& ar) { t.state(ar); };
 
+// How the scene feeds a rate-form stress (header); the defaults are this library's choice, the
+// alternatives Peridigm's (reference/peridigm_cloud/README.md).
+struct RateFormPairing {
+    bool end_of_step = false;           // false: mid-step configuration; true: end of step
+    double initial_velocity_step = 0;   // [s] > 0: Peridigm's first evaluation; 0: the pseudo step from rest
+};
+
 template <int D, class Model>
 class Scene {
 public:
@@ -59,6 +72,7 @@ public:
     Bonds& bonds;
     Model& model;
     std::function<void(double t, const Field<D>& y, const Field<D>& v, Field<D>& b)> extra_force;  // see header; empty: none
+    RateFormPairing rate_pairing;  // header; used by a RateFormModel only
 
     Scene(const Body<D>& body, Bonds& bonds, Model& model) : body(body), bonds(bonds), model(model), y_(body.size()) {}
 
@@ -88,20 +102,15 @@ public:
     long internal_forces(const Field<D>& u_old, const Field<D>& u, double dt, Field<D>& f)
     {
         if (!(dt >= 0)) throw std::invalid_argument("Scene: time step dt must be >= 0");
-        add_fields(body.x, u, y_);
-        long broke = 0;
-        if (break_bonds_) {
-            broke = break_bonds_(bonds, y_);
-            if constexpr (BondDependentModel<Model>)
-                if (broke > 0) model.recompute(bonds);  // correspondence recomputes K in its point pass
-        }
-        if constexpr (D == 3 && RateFormModel<Model>)
-            if (model.rate_form()) advance_rate_form(u_old, u, dt > 0 ? dt : 1.0);
-        const BondWork* work = bond_work_ ? bond_work_(bonds) : nullptr;
-        if constexpr (HistoryModel<Model, D>) internal_force(model, bonds, y_, dt, f, work);
-        else internal_force(model, bonds, y_, f, work);
-        if (record_) record_(y_);
-        return broke;
+        return evaluate(u_old, u, dt, f, nullptr);
+    }
+
+    // The first evaluation of a run (header).
+    long start_forces(const Field<D>& u, const Field<D>& v, Field<D>& f)
+    {
+        const Field<D> rest(body.size());  // u_old = 0: the pseudo step from the reference
+        if (!(rate_pairing.initial_velocity_step >= 0)) throw std::invalid_argument("Scene: initial_velocity_step must be >= 0");
+        return evaluate(rest, u, 0.0, f, rate_pairing.initial_velocity_step > 0 ? &v : nullptr);
     }
 
     void commit()
@@ -142,8 +151,34 @@ public:
     }
 
 private:
+    // internal_forces, and start_forces with v_start: Peridigm's first evaluation (header).
+    long evaluate(const Field<D>& u_old, const Field<D>& u, double dt, Field<D>& f, const Field<D>* v_start)
+    {
+        add_fields(body.x, u, y_);
+        long broke = 0;
+        if (break_bonds_) {
+            broke = break_bonds_(bonds, y_);
+            if constexpr (BondDependentModel<Model>)
+                if (broke > 0) model.recompute(bonds);  // correspondence recomputes K in its point pass
+        }
+        bool reset = false;
+        if constexpr (D == 3 && RateFormModel<Model>)
+            if (model.rate_form()) {
+                reset = v_start != nullptr;
+                if (reset) model.update_stress(bonds, y_, *v_start, rate_pairing.initial_velocity_step);
+                else advance_rate_form(u_old, u, dt > 0 ? dt : 1.0);
+            }
+        const BondWork* work = bond_work_ ? bond_work_(bonds) : nullptr;
+        if constexpr (HistoryModel<Model, D>) internal_force(model, bonds, y_, dt, f, work);
+        else internal_force(model, bonds, y_, f, work);
+        if (record_) record_(y_);
+        if constexpr (D == 3 && RateFormModel<Model>)
+            if (reset) model.reset_rate_state();
+        return broke;
+    }
+
     Field<D> y_;
-    Field<D> y_mid_, v_step_;  // rate form only, else empty
+    Field<D> y_mid_, v_step_;  // rate form only, else empty: the configuration and velocity of its update
     std::function<long(Bonds&, const Field<D>&)> break_bonds_;
     std::function<const BondWork*(const Bonds&)> bond_work_;
     std::function<void(const Field<D>&)> record_;
@@ -156,9 +191,10 @@ private:
             y_mid_.resize(body.size());
             v_step_.resize(body.size());
         }
+        const double w_old = rate_pairing.end_of_step ? 0.0 : 0.5;  // weight of u_old in the configuration
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < body.size(); ++i) {
-                y_mid_.c[d][i] = body.x.c[d][i] + 0.5 * (u_old.c[d][i] + u.c[d][i]);  // [m]
+                y_mid_.c[d][i] = body.x.c[d][i] + (w_old * u_old.c[d][i] + (1 - w_old) * u.c[d][i]);  // [m]
                 v_step_.c[d][i] = (u.c[d][i] - u_old.c[d][i]) / dt;                  // [m/s]
             }
         model.update_stress(bonds, y_mid_, v_step_, dt);

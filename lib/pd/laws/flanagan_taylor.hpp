@@ -5,6 +5,9 @@
 //   R <- exp(dt Omega) R (Rodrigues),  V <- V + dt (L V - V Omega)
 //   d = R^T D R,  sigma_hat <- sigma_hat + dt (K tr(d) I + 2 G dev(d)),  sigma = R sigma_hat R^T.
 // R, V and the unrotated stress sigma_hat are the point's state; returns sigma [Pa].
+// RotationIncrement::peridigm: Q = I + sin(dt |om|)/|om| Om - (1 - cos(dt |om|))/|om|^2 Om^2, the sign
+// of Peridigm's code (reference/peridigm_cloud/README.md); Q is then not exactly orthogonal
+// (|Q^T Q - I| ~ (dt |om|)^2). The default is the exact exponential (Rodrigues, plus sign).
 #pragma once
 #include "pd/laws/elastic.hpp"
 
@@ -12,7 +15,10 @@
 
 namespace pd::laws {
 
-inline Mat3 flanagan_taylor_step(const Mat3& F, const Mat3& Fdot, Mat3& R, Mat3& V, Mat3& sigma_hat, double K, double G, double dt)
+enum class RotationIncrement { rodrigues, peridigm };
+
+inline Mat3 flanagan_taylor_step(const Mat3& F, const Mat3& Fdot, Mat3& R, Mat3& V, Mat3& sigma_hat, double K, double G, double dt,
+                                 RotationIncrement rotation = RotationIncrement::rodrigues)
 {
     using Col = Eigen::Vector3d;
     const Mat3 L = Fdot * F.inverse();                    // step 2
@@ -27,7 +33,8 @@ inline Mat3 flanagan_taylor_step(const Mat3& F, const Mat3& Fdot, Mat3& R, Mat3&
     Mat3 Q = Mat3::Identity();                            // step 5: Q = exp(dt Om), Rodrigues
     if (o2 > 1e-30) {
         const double o = std::sqrt(o2);
-        Q += std::sin(dt * o) / o * Om + (1 - std::cos(dt * o)) / o2 * Om * Om;
+        const double sign = rotation == RotationIncrement::rodrigues ? 1.0 : -1.0;
+        Q += std::sin(dt * o) / o * Om + sign * (1 - std::cos(dt * o)) / o2 * Om * Om;
     }
     R = Q * R;                                            // step 6
     V += dt * (L * V - V * Om);                           // step 7

@@ -17,6 +17,8 @@
 //   t_hg = C_hg c ((y_j - y_i - F xi) . M)/|xi| M,  M = Y/|Y|,  c = PMB micromodulus (18K/(pi delta^4) in 3D),
 //   summed with F = F_i (bond i->j) and F = F_j (bond j->i): on i, C_hg c V_j ((2Y - (F_i + F_j) xi).M)/|xi| M.
 //   No omega factor (as Peridigm). C_hg = 0 (default) switches it off; the source uses 0.02.
+//   HourglassDirection::bond (Peridigm's form): along Y instead of M, i.e. times |Y| (the force then
+//   carries an extra length in the input's unit); per-node code only (no vectorised path).
 // A node whose K is singular (fewer than D independent intact bonds; the rule of models/shape_tensor.hpp)
 // gets K^-1 = 0 and F = I: no stress force.
 // Usage: internal_force(model, bonds, y, f) (bond_loop.hpp) runs point_pass (K on damage, F, P) and the
@@ -50,6 +52,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
@@ -61,6 +64,9 @@
 #include <vector>
 
 namespace pd {
+
+// Direction of the Littlewood hourglass force (header): unit = M = Y/|Y|, bond = Y (Peridigm).
+enum class HourglassDirection { unit, bond };
 
 template <int D>
 struct Correspondence {
@@ -79,6 +85,8 @@ struct Correspondence {
         double C_hg = 0;               // Littlewood hourglass coefficient [-]; 0 = off, source 0.02
         Plane plane = Plane::strain;   // 2D reduction of the linear law
         double measure = 1;            // 2D thickness [m] (hourglass micromodulus only)
+        HourglassDirection hourglass_direction = HourglassDirection::unit;  // header
+        laws::RotationIncrement rotation = laws::RotationIncrement::rodrigues;  // Law::flanagan_taylor (laws/flanagan_taylor.hpp)
         // F, sigma, P, PKinv of every node after each point pass (default). false: the chunked point
         // pass (3D, Law::linear, no damage) leaves those of chunk nodes in its own arrays until
         // sync_node_matrices() (energy_density and a bond pass that needs them call it): for runs
@@ -265,12 +273,12 @@ struct Correspondence {
     }
 
     // The bond kernel (models/correspondence_kernel.hpp), with the hourglass term compiled in or out.
-    template <bool Hourglass>
-    using Kernel = CorrespondenceKernel<D, Hourglass>;
-    template <bool Hourglass>
-    Kernel<Hourglass> kernel() const
+    template <bool Hourglass, bool AlongBond = false>
+    using Kernel = CorrespondenceKernel<D, Hourglass, AlongBond>;
+    template <bool Hourglass, bool AlongBond = false>
+    Kernel<Hourglass, AlongBond> kernel() const
     {
-        Kernel<Hourglass> kn{};
+        Kernel<Hourglass, AlongBond> kn{};
         for (int d = 0; d < D; ++d) { kn.x[d] = x.c[d].data(); kn.f_own[d] = f_own.c[d].data(); }
         kn.wV = wV.data();
         kn.hg = Hourglass ? hg.data() : nullptr;
@@ -295,8 +303,9 @@ struct Correspondence {
             parallel_for(F.size(), [&](std::size_t i) { write_node_block(i); });
             blocks_partial = false;
         }
-        if (c_hg != 0) pass(kernel<true>());
-        else pass(kernel<false>());
+        if (c_hg == 0) pass(kernel<false>());
+        else if (par.hourglass_direction == HourglassDirection::unit) pass(kernel<true>());
+        else pass(kernel<true, true>());
     }
 
     // F, sigma, P and PKinv of the chunk nodes a point pass with node_matrices = false left in its
@@ -321,7 +330,9 @@ struct Correspondence {
     Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const
     {
         sync_node_matrices();  // the kernel reads F and P K^-1 of both nodes
-        Vec<D> f = c_hg != 0 ? kernel<true>().bond_force(i, k, j, Y) : kernel<false>().bond_force(i, k, j, Y);
+        Vec<D> f = c_hg == 0 ? kernel<false>().bond_force(i, k, j, Y)
+                   : par.hourglass_direction == HourglassDirection::unit ? kernel<true>().bond_force(i, k, j, Y)
+                                                                         : kernel<true, true>().bond_force(i, k, j, Y);
         const Col own = wV[k] * (PKinv[i] * xi(i, j));
         for (int d = 0; d < D; ++d) f[d] += own(d);
         return f;
@@ -345,6 +356,15 @@ struct Correspondence {
 
     // RateFormModel (models/rate_form.hpp): the stress of this instance needs update_stress each step.
     bool rate_form() const { return par.law == Law::flanagan_taylor; }
+    // Back to the reference state of the rate form (sigma_hat = sigma = 0, R = V = I): after Peridigm's
+    // first evaluation (scene.hpp, RateFormPairing::initial_velocity_step).
+    void reset_rate_state()
+    {
+        std::fill(sigma_hat.begin(), sigma_hat.end(), Mat::Zero());
+        std::fill(sigma.begin(), sigma.end(), Mat::Zero());
+        std::fill(R.begin(), R.end(), Mat::Identity());
+        std::fill(V.begin(), V.end(), Mat::Identity());
+    }
     // The rate form's history for a checkpoint (core/state_archive.hpp): sigma_hat, R, V and the
     // sigma of the last update; a point pass at the restored positions then rebuilds F and P.
     void rate_state(StateArchive& ar)
@@ -373,7 +393,8 @@ struct Correspondence {
             }
             if (Kinv[i].isZero(0)) return;
             F[i] = N[0] * Kinv[i];
-            sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], K, G, dt);  // step 1: Fdot = N[1] K^-1
+            sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], K, G, dt,  // step 1: Fdot = N[1] K^-1
+                                                  par.rotation);
         });
     }
 

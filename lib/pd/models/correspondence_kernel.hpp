@@ -9,6 +9,7 @@
 #include "pd/models/correspondence_simd.hpp"
 #include "pd/simd/translated_families.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -19,8 +20,9 @@ namespace pd {
 // (second term only when Hourglass) is split: the i-end term summed over the family is
 // P_i K_i^-1 m_xi (node_force, once per node); bond_force gives the rest. Branch-free plain
 // arithmetic on raw arrays, so that the bond loop vectorises it; |Y| = 0 (a collapsed broken
-// bond) gives a zero hourglass force.
-template <int D, bool Hourglass>
+// bond) gives a zero hourglass force. AlongBond (HourglassDirection::bond, Peridigm's form): the
+// hourglass term divided by |Y| instead of |Y|^2; it has no chunk or AVX2 path.
+template <int D, bool Hourglass, bool AlongBond = false>
 struct CorrespondenceKernel {
     static constexpr bool ordinary = false;
     static constexpr int DD = D * D;  // entries of a D x D matrix
@@ -76,11 +78,12 @@ struct CorrespondenceKernel {
             proj += (2 * Y[a] - g) * Y[a];
             y2 += Y[a] * Y[a];
         }
-        return (hg[k] * proj / (y2 > 0 ? y2 : 1.0)) * Y;
+        const double den = AlongBond ? std::sqrt(y2) : y2;  // |Y| or |Y|^2 [m or m^2]
+        return (hg[k] * proj / (y2 > 0 ? den : 1.0)) * Y;
     }
 #ifdef PD_CHUNK_WIDTH
     // Chunk hook of the bond loop (bond_loop.hpp): f of the nodes of run p's chunks, undamaged.
-    const TranslatedRuns* chunks(const Bonds& b) const { return runs && runs->fits(b) ? runs : nullptr; }
+    const TranslatedRuns* chunks(const Bonds& b) const { return !AlongBond && runs && runs->fits(b) ? runs : nullptr; }
     void run_force(int p, const Bonds&, const Field<D>& y, Field<D>& f) const
         requires(D == 3)
     {
@@ -96,7 +99,7 @@ struct CorrespondenceKernel {
     // The whole f_i (bond_loop.hpp, family kernel), 3D, vectorised within the bond
     // (correspondence_simd.hpp); Out: also the bond work of the pass (bond_loop.hpp).
     template <bool Damaged, bool Out = false>
-        requires(D == 3)
+        requires(D == 3 && !AlongBond)
     Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y, const BondWork* out = nullptr) const
     {
         return detail::family_force_avx2<Hourglass, Damaged, Out>(*this, i, b, y, out);

@@ -65,8 +65,8 @@ PALS::PALS(const Params& prm, const Body<3>& body, const Bonds& b)
 {
     // Full-sphere normalisation: (omega0 x)•x = 3 and (sigma0 eps)•eps = dev H : dev H,
     // using <(n_x^2 - 1/3)^2> = 4/45 over the sphere: sigma0 M2 4/45 = 2/3 -> sigma0 = 15/(2 M2).
-    omega0_scale = 3.0 / horizon_moment(prm.omega0, 2, delta, 3, 1.0);
-    sigma0_scale = 7.5 / horizon_moment(prm.sigma0, 2, delta, 3, 1.0);
+    omega0_scale = prm.base == Base::unit ? 1.0 : 3.0 / horizon_moment(prm.omega0, 2, delta, 3, 1.0);
+    sigma0_scale = prm.base == Base::unit ? 1.0 : 7.5 / horizon_moment(prm.sigma0, 2, delta, 3, 1.0);
     recompute(b);
 }
 

@@ -20,6 +20,8 @@
 //   omega0 = 3 w0 / M2(w0),  sigma0 = (15/2) s0 / M2(s0),  M2(w) = int_sphere w |xi|^2 dV,
 // so (omega0 x)•x = 3 and (sigma0 eps)•eps = dev H : dev H on a full sphere (constant w:
 // omega0 = 15 / (4 pi delta^5), sigma0 = 75 / (8 pi delta^5), i.e. LPS's 3/m and 15/(2m)),
+// (PALS::Base::unit instead: omega0 = sigma0 = 1 in the unit system of the input, Peridigm's
+// default with its normalisation off; the result then depends on the length unit),
 // and the systems are solved in units of delta (xi/delta, V/delta^3, multipliers times
 // delta^5): the same specimen in SI, mm or cm gives the same multipliers and modulus.
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y| (omega and sigma are even in xi), through
@@ -48,18 +50,20 @@ namespace pd {
 
 struct PALS {
     static constexpr bool has_point_pass = true;
+    enum class Base { normalised, unit };  // scale of the base functions (header)
     struct Params {
         Elastic material;
         Influence omega0{};  // dilatational base function (shape only; normalised, see header)
         Influence sigma0{};  // deviatoric base function (shape only; normalised, see header)
+        Base base = Base::normalised;
     };
     using Multipliers = std::array<double, 6>;  // dimensionless (times delta^5)
 
     double K = 0;                       // bulk modulus [Pa]
     double G = 0;                       // shear modulus [Pa]
     double delta = 0;                   // horizon [m]
-    double omega0_scale = 0;            // 3 / M2(w0) [1/m^5]
-    double sigma0_scale = 0;            // (15/2) / M2(s0) [1/m^5]
+    double omega0_scale = 0;            // 3 / M2(w0) [1/m^5] (Base::unit: 1)
+    double sigma0_scale = 0;            // (15/2) / M2(s0) [1/m^5] (Base::unit: 1)
     std::vector<Multipliers> lambda;    // omega multipliers per node, lambda * delta^5 [-]
     std::vector<Multipliers> tau;       // sigma multipliers per node, tau * delta^5 [-]
     std::vector<double> m_sigma;        // (sigma_i x)•x per node [-]

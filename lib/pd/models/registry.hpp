@@ -6,8 +6,8 @@
 //
 // Names (model_names): pmb (Silling-Askari 2005; only kappa enters, nu = 1/4 implied in 3D), lps
 // (Silling et al. 2007), lps-scf (LPS with Peridigm's shear correction factor, spec/000b sec. 1.3,
-// eq. 4.14), pals (3D only, spec/000b sec. 1.4), correspondence (2D/3D, linear small-strain law,
-// Littlewood hourglass control C_hg). fn receives the model as a non-const reference and is
+// eq. 4.14), pals (3D only, spec/000b sec. 1.4), correspondence (2D/3D, linear small-strain law, or
+// in 3D the hypo-elastic Flanagan-Taylor law, Littlewood hourglass control C_hg). fn receives the model as a non-const reference and is
 // compiled once per model type, so its result type must be the same for every model; a call may
 // name the model types it needs (with_model<PMB, LPS>(...)) so that fn is compiled for those only.
 // An unknown
@@ -43,6 +43,11 @@ struct ModelChoice {
     Plane plane = Plane::strain;   // 2D reduction
     double measure = 1;            // 2D thickness [m] / 1D cross-section [m^2]
     double C_hg = 0;               // correspondence: Littlewood hourglass coefficient [-] (source 0.02)
+    // correspondence (3D): law flanagan_taylor instead of the small-strain linear law, and Peridigm's forms
+    bool hypoelastic = false;
+    HourglassDirection hourglass_direction = HourglassDirection::unit;
+    laws::RotationIncrement rotation = laws::RotationIncrement::rodrigues;
+    PALS::Base pals_base = PALS::Base::normalised;  // pals: scale of the base influence functions
 };
 
 namespace detail {
@@ -70,13 +75,18 @@ decltype(auto) with_model(const ModelChoice& c, const Body<D>& body, const Bonds
     } else if (c.name == "pals") {
         if constexpr (D != 3) throw std::invalid_argument("model pals exists in 3D only");
         else if constexpr (detail::model_allowed<PALS, Only...>) {
-            PALS model({.material = c.material}, body, bonds);
+            PALS model({.material = c.material, .base = c.pals_base}, body, bonds);
             return fn(model);
         }
     } else if (c.name == "correspondence") {
         if constexpr (D == 1) throw std::invalid_argument("model correspondence exists in 2D and 3D only");
         else if constexpr (detail::model_allowed<Correspondence<D>, Only...>) {
-            Correspondence<D> model({.material = c.material, .C_hg = c.C_hg, .plane = c.plane, .measure = c.measure}, body, bonds);
+            if (D != 3 && c.hypoelastic) throw std::invalid_argument("the hypo-elastic correspondence law exists in 3D only");
+            using Law = typename Correspondence<D>::Law;
+            Correspondence<D> model({.material = c.material, .law = c.hypoelastic ? Law::flanagan_taylor : Law::linear, .C_hg = c.C_hg,
+                                     .plane = c.plane, .measure = c.measure, .hourglass_direction = c.hourglass_direction,
+                                     .rotation = c.rotation},
+                                    body, bonds);
             return fn(model);
         }
     } else {

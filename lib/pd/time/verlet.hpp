@@ -11,7 +11,8 @@
 // history and bond work are its business. Explicit hands it u_n, u_{n+1} and dt each step, and 0 in
 // start(): the history state is reached at once and a rate-form stress goes from the reference
 // (u = 0) to the initial u in one pseudo step, as LoadStep from y0 = x does (so the model's state must
-// belong to the reference then); it commits the history once per step. The scene's extra_force (contact,
+// belong to the reference then), or Peridigm's first evaluation with the initial velocity
+// (Scene::rate_pairing); it commits the history once per step. The scene's extra_force (contact,
 // impactors) adds to the boundary's body forces (v is the half-step velocity there); its work enters
 // the external work like any body force. A heat component of the scene takes its thermal steps due
 // after the positions' update and before the force evaluation. Explicit keeps its own copy of the scene (the rule and the
@@ -102,8 +103,7 @@ public:
     void start()
     {
         prepare();
-        u_old_.fill(0.0);  // rate form: the pseudo step from the reference (header)
-        evaluate(0.0);
+        evaluate(0.0, true);  // rate form: the pseudo step from the reference (header), or scene.rate_pairing
         scene.commit();
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
@@ -219,9 +219,9 @@ private:
     }
 
     // Forces and accelerations at u; dt: the step from u_old_ to u (0 in start()).
-    void evaluate(double dt)
+    void evaluate(double dt, bool start = false)
     {
-        broken_bonds += scene.internal_forces(u_old_, u, dt, f_);
+        broken_bonds += start ? scene.start_forces(u, v, f_) : scene.internal_forces(u_old_, u, dt, f_);
         boundary.external(t, b_);
         if (scene.extra_force) scene.extra_force(t, scene.positions(), v, b_);
         for (int d = 0; d < D; ++d)
