@@ -9,12 +9,17 @@
 //                     deviation,note
 //                     with reference / ours / error copied verbatim from columns reference / value /
 //                     rel_error of the case's CSV row, wall_s from its wall cell;
-//   ledger_status.csv status,cases: the count per status.
+//   ledger_status.csv status,cases: the count per status;
+//   check_kinds.csv   kind,checks,passed,failed: the checks of every committed run (every checks.csv
+//                     below reports/, written by Case::finish) by kind (pd/io/checks.hpp); `unrecorded`:
+//                     a checks.csv of a run made before the kinds were recorded (no kind column);
+//   regression_bounds.csv  run,check,passed: the regression bounds among them, listed apart.
 // Status, computed here and never written by hand:
 //   MISSING              no code of the project runs the case (code empty);
 //   REPRODUCED           a driver case whose csv row has |rel_error| <= tolerance (when a tolerance is
 //                        given) and whose run passed every check matching the regex `check` (when given:
-//                        checks.csv beside the csv, written by Case::finish; at least one must match),
+//                        checks.csv beside the csv, written by Case::finish; at least one must match,
+//                        and none may be a regression bound: our own earlier output proves nothing),
 //                        or unit tests (`test Suite.Name;...`) that exist in ROOT/tests (they run in make
 //                        check, which fails when they do);
 //   DEVIATION EXPLAINED  a driver case that misses (or has neither tolerance nor check: nothing compares
@@ -26,6 +31,8 @@
 #include "csv_records.hpp"
 #include "pd/io/csv.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -135,6 +142,37 @@ std::string wall_cell(CsvCache& csv, const std::string& addr, const std::string&
     bad(where + ": wall '" + addr + "' is not PATH:ROW:COLUMN or PATH:sum(COLUMN)");
 }
 
+std::string csv_line(const std::vector<std::string>& fields);
+
+// check_kinds.csv and regression_bounds.csv (header) from every checks.csv below ROOT/reports, in path order.
+std::pair<std::string, std::string> check_tables(const fs::path& reports)
+{
+    std::vector<fs::path> files;
+    for (const auto& e : fs::recursive_directory_iterator(reports))
+        if (e.path().filename() == "checks.csv") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    std::map<std::string, std::array<long, 2>> count;  // kind -> passed, failed
+    std::string bounds = csv_line({"run", "check", "passed"});
+    for (const fs::path& f : files) {
+        const std::string run = fs::relative(f.parent_path(), reports).generic_string();
+        for (const auto& r : records(f)) {
+            const auto kind_it = r.find("kind"), passed = r.find("passed"), check = r.find("check");
+            if (passed == r.end() || check == r.end()) bad(f.string() + ": needs the columns check,[kind,]passed");
+            const std::string kind = kind_it == r.end() ? "unrecorded" : kind_it->second;
+            if (kind != "accuracy" && kind != "property" && kind != "regression_bound" && kind != "unrecorded")
+                bad(f.string() + ": unknown kind '" + kind + "'");
+            ++count[kind][passed->second == "1" ? 0 : 1];
+            if (kind == "regression_bound") bounds += csv_line({run, check->second, passed->second});
+        }
+    }
+    std::string kinds = csv_line({"kind", "checks", "passed", "failed"});
+    for (const char* k : {"accuracy", "property", "regression_bound", "unrecorded"}) {
+        const auto& c = count[k];
+        kinds += csv_line({k, std::to_string(c[0] + c[1]), std::to_string(c[0]), std::to_string(c[1])});
+    }
+    return {kinds, bounds};
+}
+
 std::string csv_line(const std::vector<std::string>& fields)
 {
     std::string line;
@@ -207,6 +245,8 @@ std::pair<std::string, std::string> build(const fs::path& root, const std::set<s
                 int matched = 0;
                 for (const auto& k : csv.get(checks))
                     if (std::regex_search(csv.field(k, "check", checks, where), which)) {
+                        if (k.count("kind") && k.at("kind") == "regression_bound")
+                            bad(where + ": check '" + k.at("check") + "' is a regression bound; it cannot earn a status");
                         ++matched;
                         ok = ok && csv.field(k, "passed", checks, where) == "1";
                     }
@@ -242,8 +282,10 @@ int run(int argc, char** argv)
         digests = digest_cases(argv[4]);
     }
     const auto [ledger, status] = build(root, with_spec ? &digests : nullptr);
+    const auto [kinds, bounds] = check_tables(root / "reports");
     int differ = 0;
-    for (const auto& [name, text] : {std::pair{"ledger.csv", ledger}, std::pair{"ledger_status.csv", status}}) {
+    for (const auto& [name, text] : {std::pair{"ledger.csv", ledger}, std::pair{"ledger_status.csv", status},
+                                     std::pair{"check_kinds.csv", kinds}, std::pair{"regression_bounds.csv", bounds}}) {
         const fs::path p = root / "reports" / name;
         if (fs::exists(p) && slurp(p) == text) continue;
         ++differ;

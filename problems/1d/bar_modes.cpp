@@ -139,8 +139,10 @@ static int run_case(int argc, char** argv)
         {"f1_fe_cvode", f1_cvode, bar.f1, pd::io::relative_error(f1_cvode, bar.f1), "Hz"}, {"dt", rf.dt, NAN, NAN, "s"},
         {"dt_crit_SA", rf.dt_crit, NAN, NAN, "s"}, {"energy_growth", rf.growth, 1, NAN, "-"}});
     // f1 is first order in dx: the clamp layer and the free surface move the effective ends by O(dx)
-    // (measured f1 error -1.0 dx/l for N = 50..1000, LPS and PMB); the tolerance allows 2 dx/l.
-    run.check(std::abs(sf.f1 / bar.f1 - 1) <= 2 * rf.dx / l, "f1 within 2 dx/l of c/(4l) (finest N of the study)");
+    // (measured f1 error -1.0 dx/l for N = 50..1000, LPS and PMB); the bound allows 2 dx/l: only the
+    // order is argued, the coefficient is twice our measured one (a regression bound).
+    run.regression_bound(std::abs(sf.f1 / bar.f1 - 1) <= 2 * rf.dx / l,
+                         "f1 within 2 dx/l of c/(4l) (finest N of the study; 2x the measured -1.0 dx/l)");
     std::snprintf(verdict, sizeof verdict, "%s f1 = %.3f Hz (%+.3f %%, E1 first T1 %.4f) at N = %d",
                   finest.begin()->first.c_str(), sf.f1, 100 * (sf.f1 / bar.f1 - 1), sf.E1_T1, rf.N);
     // Lumped linear FE: f1_h/f1 = sin(k1 dx/2)/(k1 dx/2), error (k1 dx)^2/24 (second order); 2x for the meter.
@@ -175,7 +177,7 @@ static int run_case(int argc, char** argv)
         std::printf("stability limit / dt_SA at N = %d: PMB %.4f (von Neumann %.4f), LPS %.4f\n", N, thr_pmb, vn, thr_lps);
         // E1 ~ C dx once the phase drift over the window is small (spec 5.1: error x N ~ const).
         run.check(rate_lps >= 0.7 && rate_lps <= 1.5, "LPS observed rate of E1 in [0.7, 1.5] (finest pair)");
-        run.check(stab[0].second.points[0].stable && stab[1].second.points[0].stable, "stable at dt-factor 0.5 (PMB, LPS)");
+        run.property(stab[0].second.points[0].stable && stab[1].second.points[0].stable, "stable at dt-factor 0.5 (PMB, LPS)");
         // Von Neumann is exact for the interior of the PMB lattice; the bisection resolves 0.5 %.
         run.check(std::abs(thr_pmb / vn - 1) <= 0.02, "PMB stability limit within 2 % of von Neumann");
         std::snprintf(verdict + std::strlen(verdict), 120, "; E1 rate %.2f/%.2f, dt limit %.3f/%.3f dt_SA (LPS/PMB)",
@@ -194,7 +196,7 @@ static int run_case(int argc, char** argv)
         bar_modes::print_integrators(rows, N);
         bar_modes::write_integrators(run.file("integrators.csv"), rows);
         // At Verlet's step, Newmark's period error ~ (omega dt)^2/12 is negligible for mode 1: same f1 bound.
-        run.check(std::abs(rows[1].f1_rel_error) <= 2.0 / N, "Newmark f1 within 2 dx/l of c/(4l) at Verlet's step");
+        run.regression_bound(std::abs(rows[1].f1_rel_error) <= 2.0 / N, "Newmark f1 within 2 dx/l of c/(4l) at Verlet's step (the Verlet bound)");
         run.summary({"f1_newmark_4dt_SA", (1 + rows[2].f1_rel_error) * bar.f1, bar.f1, std::abs(rows[2].f1_rel_error), "Hz"});
     }
     return run.finish("%s", verdict);

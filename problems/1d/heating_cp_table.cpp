@@ -119,9 +119,10 @@ int run_case(int argc, char** argv)
         std::printf("  %7.1f %9.2f %14.2f %12.4g %12.4g %12.4g\n", th, c, ex, t[0] - ex, t[1] - ex, t[2] - ex);
         worst_cvode = std::max(worst_cvode, std::abs(t[2] - ex) / ex);
     }
-    // CVODE controls the local error; the global error grows over its ~600 steps to about 100 rtol.
-    run.check(worst_cvode < 1000 * rtol, "CVODE: every checkpoint time within 1000 rtol of the exact enthalpy time");
-    run.check(std::abs(at_end[schemes[0]].t - at_end[schemes[1]].t) < 1e-9 * t_exact(T_end),
+    // CVODE controls the local error, not the global one, which grows over its ~600 steps to about 100 rtol
+    // (measured): the bound is 10x that measurement (a regression bound).
+    run.regression_bound(worst_cvode < 1000 * rtol, "CVODE: every checkpoint time within 1000 rtol of the exact enthalpy time (10x measured)");
+    run.property(std::abs(at_end[schemes[0]].t - at_end[schemes[1]].t) < 1e-9 * t_exact(T_end),
               "implicit Euler (rho c lagged) = explicit Euler when Q = 0 (to 1e-9)");
 
     // 3. Work-precision: error of the time to T-end against the exact one, and run time.
@@ -146,7 +147,7 @@ int run_case(int argc, char** argv)
     for (double tol : {1e-4, 1e-6, 1e-8, 1e-10}) e_cv = record(pd::HeatIntegrator::cvode, tol);
     const double ratio = e_exp[1] / e_exp[2];
     run.check(ratio > 5 && ratio < 20, "explicit Euler first order: error(dt 1000 s)/error(dt 100 s), times rho/source, in 5..20 (10 expected)");
-    run.check(e_cv < 1e-7, "CVODE at rtol 1e-10 within 1e-7 (1000 rtol) of the exact time");
+    run.regression_bound(e_cv < 1e-7, "CVODE at rtol 1e-10 within 1e-7 (1000 rtol, 10x measured) of the exact time");
 
     // 4. Summary and verdict.
     const auto main_scheme = pd::parse_heat_integrator(opt.get_string("integrator"));

@@ -89,10 +89,11 @@ int run_case(int argc, char** argv)
     const double gamma_b = E_b / E_inf, wP = 1 / tau, w0 = wP / (1 + gamma_b);
     auto H = [&](double w) { return E_inf * (1.0 + std::complex<double>(0, w / w0)) / (1.0 + std::complex<double>(0, w / wP)); };
     const double discretisation = std::pow(2 * pi / N, 2) / 12;  // (w dt)^2/12, scale of H_d - H (header)
-    auto H_discrete = [&](double w) {  // exact response of the recurrence (header)
-        const auto c = pd::laws::maxwell_coefficients(2 * pi / w / N, tau);
+    auto H_discrete = [&](double w) {  // exact response of the recurrence (header), its coefficients written out
+        const double x = 2 * pi / w / N / tau;                 // dt/tau [-]
+        const double decay = std::exp(-x), beta = 1 - (1 - std::exp(-x)) / x;  // e^-x and 1 - (1 - e^-x)/x
         const std::complex<double> z = std::polar(1.0, 2 * pi / N);
-        return E_inf + E_b * (1.0 - ((1 - c.decay - c.beta) + c.beta * z) / (z - c.decay));
+        return E_inf + E_b * (1.0 - ((1 - decay - beta) + beta * z) / (z - decay));
     };
 
     // 3. Frequency sweep.
@@ -152,9 +153,10 @@ int run_case(int argc, char** argv)
     run.check(std::abs(phase_max - phase_max_ref) * pi / 180 < 2 * E_b * discretisation / (E_inf * std::sqrt(1 + gamma_b)),
               "maximum phase within 2 E_b (2 pi/N)^2/12 / |H| rad of asin(gamma_b/(2 + gamma_b))");
     // The discrete peak moves by O((w dt)^2) too, growing with gamma_b: measured 0.5 (2 pi/N)^2/12 at
-    // gamma_b = 1 (N = 30, 50, 200), 1.5 at gamma_b = 3, 4 at gamma_b = 10; bound max(1, gamma_b) (2 pi/N)^2/12.
-    run.check(std::abs(w_max_phase / w_max_ref - 1) < std::max(1.0, gamma_b) * discretisation,
-              "frequency of the maximum phase within max(1, gamma_b) (2 pi/N)^2/12 of sqrt(w0 wP)");
+    // gamma_b = 1 (N = 30, 50, 200), 1.5 at gamma_b = 3, 4 at gamma_b = 10; bound max(1, gamma_b) (2 pi/N)^2/12:
+    // the order is argued, the coefficient fitted to those measurements (a regression bound).
+    run.regression_bound(std::abs(w_max_phase / w_max_ref - 1) < std::max(1.0, gamma_b) * discretisation,
+                         "frequency of the maximum phase within max(1, gamma_b) (2 pi/N)^2/12 of sqrt(w0 wP) (coefficient fitted)");
     return run.finish("maximum phase lead %.4f deg (reference %.4f) at %.4f rad/s (reference %.4f)", phase_max, phase_max_ref,
                       w_max_phase, w_max_ref);
 }

@@ -213,10 +213,11 @@ int run_case(int argc, char** argv)
     for (double tol : rtols) e_cv.push_back(record(pd::HeatIntegrator::cvode, tol));
     run.check(std::abs(e_imp[1] / e_imp[2] - 2) < 0.3, "implicit Euler (Picard) first order in dt (error ratio 2 +- 0.3)");
     run.check(std::abs(e_exp[0] / e_exp[1] - 2) < 0.3, "explicit Euler at 0.9 dt_crit(k_max) stable and first order (ratio 2 +- 0.3)");
-    // CVODE controls the local error; the global error of the crossing time lies within 1..100 rtol.
+    // CVODE controls the local error, not the global one: 100 rtol is a rule of thumb close to the
+    // measured worst (reports/1d/steel_conductivity.md), so a regression bound.
     bool cv_ok = true;
     for (std::size_t i = 0; i < rtols.size(); ++i) cv_ok = cv_ok && e_cv[i] < 100 * rtols[i];
-    run.check(cv_ok, "CVODE (frozen-k Jacobian): error of t below 100 rtol at every rtol");
+    run.regression_bound(cv_ok, "CVODE (frozen-k Jacobian): error of t below 100 rtol at every rtol");
     run.summary({"t_target_implicit_dt1", t_conv * (1 + e_imp[2]), t_conv, e_imp[2], "s"});
     return run.finish("steady rate %.2f, flux error %.2e; t500 PD %.4f s vs classical %.4f s (rate %.2f)", st_rate,
                       pd::io::relative_error(last.flux, ref.flux()), t_pd, t_ref, tr_rate);

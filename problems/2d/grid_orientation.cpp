@@ -156,9 +156,9 @@ static int run_case(int argc, char** argv)
             run.summary({name, dev.rms, nan, nan, "m"});
             std::snprintf(name, sizeof name, "path_angle_grid%g_m%g_deg", a_deg, m);
             run.summary_observed({{name, ang, nan, nan, "deg"}});
-            run.check(!std::isnan(ang), std::string("crack grows on the ") + std::to_string(static_cast<int>(a_deg)) + " deg grid, m = " +
+            run.property(!std::isnan(ang), std::string("crack grows on the ") + std::to_string(static_cast<int>(a_deg)) + " deg grid, m = " +
                                             std::to_string(m).substr(0, 4));
-            if (a_deg == 0) run.check(horizontal, "0 deg grid: horizontal path (spec/002 Fig. 5.1b)");
+            if (a_deg == 0) run.property(horizontal, "0 deg grid: horizontal path (spec/002 Fig. 5.1b)");
         }
     paths.flush();
     return run.finish("crack paths on %zu grids (runs.csv)", runs_list.size());

@@ -186,8 +186,8 @@ static int run_case(int argc, char** argv)
     // is reported, not checked.
     run.check(std::abs(r.angle_up - angle_pub) <= 10, "upper crack angle within 10 deg of 68 deg");
     run.check(std::abs(r.angle_low + angle_pub) <= 10, "lower crack angle within 10 deg of -68 deg");
-    run.check(r.v_max < cR && r.v_max_low < cR, "maximum tip speeds below the Rayleigh speed");
-    run.check(r.v_max > cR / 2 && r.v_max_low > cR / 2, "maximum tip speeds above half the Rayleigh speed");
+    run.property(r.v_max < cR && r.v_max_low < cR, "maximum tip speeds below the Rayleigh speed");
+    run.property(r.v_max > cR / 2 && r.v_max_low > cR / 2, "maximum tip speeds above half the Rayleigh speed");
     run.check(relative_error(r.t_init, t_pub) <= 0.25, "initiation within 25 % of 24 us");
     return run.finish("dx %.3g mm: initiation %.2f us (24), angle %.1f / %.1f deg (68), v_max %.0f m/s = %.0f %% c_R (71 %%)",
                       r.dx * 1e3, r.t_init * 1e6, r.angle_up, r.angle_low, r.v_max, 100 * r.v_max / cR);

@@ -178,16 +178,16 @@ static int run_case(int argc, char** argv)
     run.print_summary(28);
 
     // Checks: every seed fractures; modulus within 10 % of E/(1 - nu^2) (PD surface softening of
-    // the free edges and the grip transition; not a published tolerance); the weakest link fails
+    // the free edges and the grip transition; neither published nor derived: a regression bound); the weakest link fails
     // below the mean critical stretch (peak strain < s_mean); seeds differ (spread > 0).
     // The fracture time is NOT checked: the source gives only "about 14 ms" (spec B.4, stated
     // without a tolerance or peak stress), and this model fails about 37 % earlier at 8 mm/s
     // (reports/3d/concrete_plate_random.md). The verdict line says so instead of letting PASS
     // suggest the time is reproduced (10 %: the modulus band above).
-    run.check(fractured == seeds, "every seed fractures before t_end");
-    run.check(std::abs(M_mu / E_ps - 1) < 0.10, "apparent modulus within 10 % of E/(1 - nu^2)");
-    run.check(e_mu < s_mean, "mean peak strain below the mean critical stretch (weakest link)");
-    run.check(seeds == 1 || t_sd > 0, "fracture time varies with the seed");
+    run.property(fractured == seeds, "every seed fractures before t_end");
+    run.regression_bound(std::abs(M_mu / E_ps - 1) < 0.10, "apparent modulus within 10 % of E/(1 - nu^2) (band not derived)");
+    run.property(e_mu < s_mean, "mean peak strain below the mean critical stretch (weakest link)");
+    run.property(seeds == 1 || t_sd > 0, "fracture time varies with the seed");
     const double t_err = relative_error(t_mu, t_ref);
     return run.finish("(checked: modulus, every seed fractures, weakest link, spread) fracture at %.3g +- %.2g ms, source about %.3g ms: "
                       "%s (%+.0f %%); modulus %.4g GPa (E/(1-nu^2) %.4g), %.1f s", t_mu * 1e3, t_sd * 1e3, t_ref * 1e3,

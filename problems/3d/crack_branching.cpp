@@ -211,10 +211,10 @@ static int run_case(int argc, char** argv)
     // The source's result is qualitative (a branch forms); the tip may not outrun the Rayleigh
     // speed; a stable run keeps displacements far below the plate height (0.1 H: a blown-up run
     // moves nodes by more than the plate size, a branching plate opens by well under a millimetre).
-    run.check(!std::isnan(t_init), "the crack starts to run");
-    run.check(br.found, "a branch forms on the mid layer (crack_metrics rule)");
-    run.check(v_max < cR, "maximum tip speed below the Rayleigh speed");
-    run.check(std::isfinite(u_max) && u_max < 0.1 * H, "stable run (largest displacement below 0.1 H)");
+    run.property(!std::isnan(t_init), "the crack starts to run");
+    run.property(br.found, "a branch forms on the mid layer (crack_metrics rule)");
+    run.property(v_max < cR, "maximum tip speed below the Rayleigh speed");
+    run.property(std::isfinite(u_max) && u_max < 0.1 * H, "stable run (largest displacement below 0.1 H)");
     return run.finish("%zu nodes, dx %.3g mm: branch at x = %.1f mm, t = %.2f us; v_max %.0f m/s (c_R %.0f); %.1f s", body.size(),
                       dx * 1e3, br.found ? br.point[0] * 1e3 : nan, t_branch * 1e6, v_max, cR, info.wall);
 }

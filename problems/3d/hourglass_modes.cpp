@@ -224,12 +224,12 @@ static int run_case(int argc, char** argv)
                      {tag + "_lambda_r1_rel", md.rel(md.rigid), NAN, NAN, "-"},
                      {tag + "_checker_env_over_bubble", md.rq[1] / md.rq[2], NAN, NAN, "-"}});
         const bool corr = md.model == "correspondence";
-        run.check(md.rigid_residual < 1e-8, tag + ": rigid modes annihilated to 1e-8 of lambda_max");
-        if (!corr) run.check(md.zero_extra == 0 && md.negative == 0 && md.soft <= 0, tag + ": no zero, negative or soft mode beyond the rigid ones");
-        if (corr && md.C_hg == 0) run.check(md.soft != 0, tag + ": spurious soft modes without control");
-        if (corr && md.C_hg == 0.02) run.check(md.soft == 0, tag + ": no soft mode at the source's C_hg");
+        run.property(md.rigid_residual < 1e-8, tag + ": rigid modes annihilated to 1e-8 of lambda_max");
+        if (!corr) run.property(md.zero_extra == 0 && md.negative == 0 && md.soft <= 0, tag + ": no zero, negative or soft mode beyond the rigid ones");
+        if (corr && md.C_hg == 0) run.property(md.soft != 0, tag + ": spurious soft modes without control");
+        if (corr && md.C_hg == 0.02) run.property(md.soft == 0, tag + ": no soft mode at the source's C_hg");
         if (!std::isnan(md.interior_W))
-            run.check(corr ? md.interior_W < 1e-12 : md.interior_W > 0.1,
+            run.property(corr ? md.interior_W < 1e-12 : md.interior_W > 0.1,
                       tag + (corr ? ": interior checkerboard energy < 1e-12 (round-off)" : ": interior checkerboard energy > 0.1"));
     }
     return run.finish("%zu spectra; FD assembly, rigid modes, zero/soft-mode counts and hourglass lift %s", modes.size(),

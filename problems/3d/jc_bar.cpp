@@ -177,6 +177,7 @@ static int run_case(int argc, char** argv)
     // 3. Material: J2/Johnson-Cook (C = 0, no softening: quasi-static, isothermal) in the central part.
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     const pd::laws::JohnsonCook jc{.A = A, .B = B, .n = n_hard};
+    const double yield_02 = A + B * std::pow(0.002, n_hard);  // the 0.2 % offset yield of the curve, written out [Pa]
     std::vector<std::uint8_t> plastic(s.body.size());
     for (std::size_t i = 0; i < s.body.size(); ++i) plastic[i] = std::abs(s.body.x.c[0][i] - L / 2) <= plastic_part * L / 2;
 
@@ -211,8 +212,8 @@ static int run_case(int argc, char** argv)
                      {"eps_gauge_last_" + name, o.eps_g, NAN, NAN, "-"},
                      {"ep_centre_" + name, o.ep, NAN, NAN, "-"},
                      {"offset_yield_" + name, o.offset_yield, A, pd::io::relative_error(o.offset_yield, A), "Pa"},
-                     {"offset_yield_vs_curve_at_0.002_" + name, o.offset_yield, jc.hardening(0.002),
-                      pd::io::relative_error(o.offset_yield, jc.hardening(0.002)), "Pa"},
+                     {"offset_yield_vs_curve_at_0.002_" + name, o.offset_yield, yield_02,
+                      pd::io::relative_error(o.offset_yield, yield_02), "Pa"},
                      {"E_initial_" + name, o.E_init, E, pd::io::relative_error(o.E_init, E), "Pa"},
                      // inf when the corner yields while the centre is still elastic: a ratio not measured
                      std::isfinite(o.corner_ratio) ? pd::io::SummaryRow{"ep_corner_over_centre_at_first_yield_" + name, o.corner_ratio, NAN, NAN, "-"}
@@ -222,17 +223,17 @@ static int run_case(int argc, char** argv)
                      {"first_yield_step_corner_" + name, double(o.yield_corner), NAN, NAN, "-"},
                      {"steps_completed_" + name, double(o.steps_done), double(steps), NAN, "-"},
                      {"wall_" + name, o.wall_s, NAN, NAN, "s"}});
-        run.check(o.steps_done == steps, name + ": all " + std::to_string(steps) + " load steps converged");
+        run.property(o.steps_done == steps, name + ": all " + std::to_string(steps) + " load steps converged");
         // The centre yields in the run: the return then puts sigma_eff on the curve to the Newton round-off.
-        run.check(o.ep > 0 && pd::io::relative_error(o.sigma_eq, jc.hardening(o.ep)) < 1e-9,
+        run.property(o.ep > 0 && pd::io::relative_error(o.sigma_eq, jc.hardening(o.ep)) < 1e-9,
                   name + ": centre yields, sigma_eff on A + B ep^n at its own ep (return consistency, not accuracy)");
         // Correspondence: uniform uniaxial stress in the gauge, so the offset yield is A + B 0.002^n
         // (+8 MPa = 1.5 % for Table 5.1) up to the gauge's plastic strain not being exactly 0.2 %
         // and the area change: 3 % allowed.
         if (name == "correspondence")
-            run.check(pd::io::relative_error(o.offset_yield, jc.hardening(0.002)) < 0.03, name + ": 0.2 % offset yield at A + B 0.002^n");
+            run.check(pd::io::relative_error(o.offset_yield, yield_02) < 0.03, name + ": 0.2 % offset yield at A + B 0.002^n");
         if (name == "lps")  // source (Fig. 5.3): the section corners yield first (more ep than the centre)
-            run.check(o.corner_ratio > 1, name + ": corner-first yield in the mid-section");
+            run.property(o.corner_ratio > 1, name + ": corner-first yield in the mid-section");
     }
     return run.finish("%zu models, %d load steps to strain %.3g", models.size(), steps, strain);
 }

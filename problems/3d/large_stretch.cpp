@@ -154,14 +154,14 @@ static int run_case(int argc, char** argv)
     // every step; PMB, LPS, PALS follow the shape of their continuum curve within 15 %.
     for (const auto& [name, r] : runs) {
         const bool required = name != "correspondence-svk";  // SVK stalls beyond ~50 % (report): curve up to there
-        run.check((r.converged || !required) && !r.curve.empty(),
+        run.property((r.converged || !required) && !r.curve.empty(),
                   name + (required ? ": every load step converged" : ": load steps converged up to its first failure (at least one)"));
     }
     if (runs.count("correspondence") && runs["correspondence"].curve.size() >= 3) {
         const auto& c = runs["correspondence"].curve;
         const std::size_t h = c.size() / 2;
         const double s1 = c[h - 1].P / c[h - 1].strain, s2 = (c.back().P - c[h - 1].P) / (c.back().strain - c[h - 1].strain);
-        run.check(s2 < s1, "correspondence: Flanagan-Taylor secant slope decreasing");
+        run.property(s2 < s1, "correspondence: Flanagan-Taylor secant slope decreasing");
     }
     for (const auto& [name, r] : runs) {
         const bool corr = name.rfind("correspondence", 0) == 0;
@@ -170,7 +170,10 @@ static int run_case(int argc, char** argv)
             const double dev = corr ? p.P / p.P_ref - 1 : p.P / p.P_ref / (r.curve.front().P / r.curve.front().P_ref) - 1;
             follows = follows && std::abs(dev) <= (corr ? 0.01 : 0.15);
         }
-        run.check(follows, name + (corr ? ": within 1 % of its closed form at every step" : ": within 15 % of the shape of its closed form at every step"));
+        // Correspondence: its closed form is exact for the uniform interior F (1 %: margin on zero). The
+        // others: 15 % is about twice the 8 % measured (a regression bound).
+        if (corr) run.check(follows, name + ": within 1 % of its closed form at every step");
+        else run.regression_bound(follows, name + ": within 15 % of the shape of its closed form at every step (2x measured)");
     }
     const std::string svk = runs.count("correspondence-svk") && !runs["correspondence-svk"].converged
                                 ? "; SVK stopped at " + runs["correspondence-svk"].message : "";

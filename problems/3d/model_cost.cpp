@@ -203,8 +203,8 @@ static int run_case(int argc, char** argv)
 
     // All runs finite and guarded (else exit 3 before here).
     std::printf("\n");
-    run.check(ratios_ok, "every cost ratio (median and best-of-R) finite and positive");
-    run.check(tips_ok, "every run's pulled end at u_end after the ramp (to 1e-9)");
+    run.property(ratios_ok, "every cost ratio (median and best-of-R) finite and positive");
+    run.property(tips_ok, "every run's pulled end at u_end after the ramp (to 1e-9)");
     return run.finish("%zu nodes, %zu bonds, %d steps; all runs stable; issue targets (LPS <= 2, LPS+SCF <= 2, PALS <= 3, "
                       "correspondence <= 3 x PMB) %s; PMB %.3g s", body.size(), bonds.size(), steps,
                       targets_met ? "all met" : "NOT all met", best_step[0]);

@@ -179,7 +179,9 @@ int run_case(int argc, char** argv)
         for (auto [model, z] : {std::pair{"lps", r.lps}, std::pair{"corr", r.corr}}) {
             const std::string key = std::string(model) + "_stiffness_" + names[q];
             run.summary({key, std::abs(z), std::abs(ref), pd::io::relative_error(std::abs(z), std::abs(ref)), "-"});
-            run.check(std::abs(z - ref) < tol * std::abs(ref), key + ": complex stiffness = G*/G within 3 (w dt)^2/12 + 10 gamma0^2");
+            // The orders are argued; the coefficients 3 and 10 are chosen, not derived (a regression bound).
+            run.regression_bound(std::abs(z - ref) < tol * std::abs(ref),
+                                 key + ": complex stiffness = G*/G within 3 (w dt)^2/12 + 10 gamma0^2 (coefficients chosen)");
             if (q == 1) run.summary({std::string(model) + "_phase_max_deg", std::arg(z) * 180 / pi, std::arg(ref) * 180 / pi,
                                      pd::io::relative_error(std::arg(z), std::arg(ref)), "deg"});
         }
@@ -214,8 +216,8 @@ int run_case(int argc, char** argv)
         std::printf("  %s (tau_b = %.4g s): w_d/w_e = %.6f, SLS root %.6f\n", key.c_str(), tau, w_d / w_e, ref / w_e);
         run.summary({key, w_d / w_e, ref / w_e, pd::io::relative_error(w_d, ref), "-"});
         // 1e-3: the bar's surface layers have theta != 0 (K untouched by the branch) and the start excites
-        // higher modes; measured 1.5e-4 (low) and 2e-5 (high) at 4 crossings.
-        run.check(std::abs(w_d / ref - 1) < 1e-3, key + ": torsion frequency = SLS root to 0.1 %");
+        // higher modes; the bound rests on the errors measured at 4 crossings (reports/3d/numerical_viscosity.md).
+        run.regression_bound(std::abs(w_d / ref - 1) < 1e-3, key + ": torsion frequency = SLS root to 0.1 % (margin over measured)");
     }
     const double wall = timer.seconds();
     run.summary({{"high_over_low_expected_eta2", std::abs(Gstar(freqs[2])) / std::abs(Gstar(freqs[0])), eta * eta, NAN, "-"},

@@ -174,9 +174,11 @@ static int run_case(int argc, char** argv)
     run.summary({{"unit_spread_max", spread, NAN, NAN, "-"}, {"E_mean_vs_qs_max", worst_qs, NAN, NAN, "-"}, {"wall_total", wall, NAN, NAN, "s"}});
     // Reasons: reports/3d/pals_units.md.
     std::printf("\n");
-    run.check(finite, "all runs stable and finite");
-    run.check(spread <= spread_tol, "unit spread max |E_units/E_SI - 1| <= --spread-tol " + pd::io::format_shortest(spread_tol));
-    run.check(worst_qs <= band, "max |E_mean/E_qs - 1| <= A/2, A = L/(c t_ramp) (not asserted when A > 1/8)");
+    run.property(finite, "all runs stable and finite");
+    run.property(spread <= spread_tol, "unit spread max |E_units/E_SI - 1| <= --spread-tol " + pd::io::format_shortest(spread_tol));
+    // E_qs is the quasi-static solve of the same model: a consistency check of the explicit runs, not
+    // an independent reference.
+    run.property(worst_qs <= band, "max |E_mean/E_qs - 1| <= A/2, A = L/(c t_ramp) (not asserted when A > 1/8; E_qs: same model, static)");
     const int status = run.finish("%s; unit spread %.2e (bound %.0e); max |E_mean/E_qs - 1| = %.2e (%s; bound A/2 = %.2e); %.1f s",
                                   finite ? "all runs stable and finite" : "NOT all runs stable and finite", spread, spread_tol, worst_qs,
                                   worst_case.c_str(), band, wall);

@@ -175,7 +175,7 @@ int run_case(int argc, char** argv)
     run.check(step.theta_max < g0 * g0, "LPS: dilatation at the centre node below gamma0^2 (zero to first order)");
     run.check(step.corr_err < geo, "correspondence: step relaxation = G gamma0 (1 + gamma_b e^{-t/tau_b}) to 10 gamma0^2");
     run.check(rmp.corr_err < geo, "correspondence: ramp-and-hold = convolution (7.18) to 10 gamma0^2");
-    run.check(step.mean_drift < 1e-12, "correspondence: mean stress unchanged by the relaxation (round-off)");
+    run.property(step.mean_drift < 1e-12, "correspondence: mean stress unchanged by the relaxation (round-off)");
     return run.finish("both models relax as the SLS closed forms (worst error %.2e)",
                       std::max({step.lps_err, rmp.lps_err, step.corr_err, rmp.corr_err}));
 }

@@ -206,11 +206,12 @@ static int run_case(int argc, char** argv)
     // kinetic once separated), max below 2x that (strain <= total), order 2 +- 0.1; shadow energy 1e-6
     // (nonlinear terms ~ v0/c_P ~ 2e-5 times the 1e-3 offset).
     run.check(relative_error(c1, cg1) < 1e-4 && relative_error(c2, cg2) < 1e-4, "wave speed at dt and dt/2 within 1e-4 of the lattice <c_g>");
-    run.check(p_drift < 1e-10, "momentum drift below 1e-10");
-    run.check(relative_error(e1, e_pred) < 0.05, "energy offset at t_end within 5 % of (dt^2/8)<omega^2>");
+    run.property(p_drift < 1e-10, "momentum drift below 1e-10");
+    // The 5 % has no bound of the 'strain = kinetic' approximation behind it, only the 0.04-1.5 % seen.
+    run.regression_bound(relative_error(e1, e_pred) < 0.05, "energy offset at t_end within 5 % of (dt^2/8)<omega^2> (margin over measured)");
     run.check(e_max < 2 * e_pred, "largest energy offset below 2 (dt^2/8)<omega^2>");
     run.check(std::abs(order - 2) < 0.1, "energy offset of order 2 +- 0.1 in dt");
-    run.check(shadow < 1e-6, "shadow energy drift below 1e-6");
+    run.property(shadow < 1e-6, "shadow energy drift below 1e-6");
     return run.finish("%s wave speed %.2f m/s vs lattice dispersion %.2f m/s (%.2e), c_P %.2f m/s; momentum drift %.1e; "
                       "energy offset %.2e (order %.2f); %.1f s", model_name.c_str(), c1, cg1, relative_error(c1, cg1), cP, p_drift,
                       e1, order, wall);

@@ -141,8 +141,11 @@ public:
     const std::filesystem::path& out() const { return out_; }
     std::filesystem::path file(const std::string& name) const { return out_ / name; }
 
-    // One line of the --check list ("check: <what> ok|FAILED").
-    void check(bool ok, const std::string& what) { checks_(ok, what); }
+    // One line of the --check list ("check: <what> ok|FAILED"), by kind (io/checks.hpp): against an
+    // independent reference, a qualitative property or invariant, or a bound from our own earlier output.
+    void check(bool ok, const std::string& what) { checks_(ok, what, CheckKind::accuracy); }
+    void property(bool ok, const std::string& what) { checks_(ok, what, CheckKind::property); }
+    void regression_bound(bool ok, const std::string& what) { checks_(ok, what, CheckKind::regression_bound); }
     bool passed() const { return checks_.passed(); }
 
     // A headline result for summary.csv (written by finish, in the order given).
@@ -160,8 +163,8 @@ public:
     // The summary as the drivers' table on stdout.
     void print_summary(int name_width, int digits = 6) const { pd::io::print_summary(rows_, name_width, digits); }
 
-    // Writes summary.csv (when there are rows) and checks.csv (check,passed: every check of the run
-    // with 1 or 0, whether or not --check is given), prints `verdict: PASS|FAIL: <headline>` and returns
+    // Writes summary.csv (when there are rows) and checks.csv (check,kind,passed: every check of the
+    // run with its kind and 1 or 0, whether or not --check is given), prints `verdict: PASS|FAIL: <headline>` and returns
     // the exit status: 1 when --check is given and a check failed, else 0. A measured row whose value
     // is nan or inf throws NonFiniteResult naming it (status 3 with guarded_main), after summary.csv
     // is written; a quantity the run does not measure is a not_measured row (csv.hpp).
@@ -169,8 +172,8 @@ public:
     {
         if (!rows_.empty()) write_summary(out_ / "summary.csv", rows_);
         if (!checks_.list().empty()) {  // the --check list with its outcomes (the ledger reads it: tools/ledger.cpp)
-            CsvWriter csv(out_ / "checks.csv", {"check", "passed"});
-            for (const auto& [what, ok] : checks_.list()) csv.row({what, ok ? 1 : 0});
+            CsvWriter csv(out_ / "checks.csv", {"check", "kind", "passed"});
+            for (const CheckRecord& c : checks_.list()) csv.row({c.what, kind_name(c.kind), c.ok ? 1 : 0});
         }
         checkpoints_.remove_all();  // the run is complete
         for (const SummaryRow& r : rows_)
