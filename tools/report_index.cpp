@@ -21,6 +21,7 @@
 #include "pd/io/csv.hpp"
 #include "svg_plot.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -177,12 +178,22 @@ std::string page(const fs::path& root)
 // Well-formedness of the generated page: every tag closed in order (void tags written as <x/>).
 std::string malformed(const std::string& html)
 {
+    // A scan, not a regex: libstdc++'s regex recurses once per character of a match, and an SVG path's
+    // attribute is thousands of characters long (a stack overflow under AddressSanitizer).
     std::vector<std::string> open;
-    static const std::regex tag(R"(<(/?)([a-zA-Z][a-zA-Z0-9]*)[^>]*?(/?)>)");
-    for (std::sregex_iterator it(html.begin(), html.end(), tag), end; it != end; ++it) {
-        const std::string name = (*it)[2].str();
-        if ((*it)[3].length()) continue;  // <x/>
-        if ((*it)[1].length() == 0) {
+    auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+    auto alnum = [&](char c) { return letter(c) || (c >= '0' && c <= '9'); };
+    for (std::size_t at = html.find('<'); at != std::string::npos; at = html.find('<', at + 1)) {
+        std::size_t k = at + 1;
+        const bool closing = k < html.size() && html[k] == '/';
+        if (closing) ++k;
+        if (k >= html.size() || !letter(html[k])) continue;  // not a tag (<!DOCTYPE, <!--, a lone '<')
+        const std::size_t name_end = std::find_if_not(html.begin() + k, html.end(), alnum) - html.begin();
+        const std::size_t gt = html.find('>', name_end);
+        if (gt == std::string::npos) return "<" + html.substr(k, name_end - k) + " has no '>'";
+        const std::string name = html.substr(k, name_end - k);
+        if (html[gt - 1] == '/') continue;  // <x/>
+        if (!closing) {
             open.push_back(name);
         } else {
             if (open.empty() || open.back() != name) return "</" + name + "> closes " + (open.empty() ? "nothing" : "<" + open.back() + ">");
