@@ -3,8 +3,8 @@
 // and no --quick/--check; the physics it runs is verified by the tests of the library.
 // Input: a CSV with columns x,y,z,volume [+ block, vx,vy,vz, ux,uy,uz, fixed, no_fail, T0, T_fixed] (pd/io/point_cloud.hpp).
 // Model PMB, LPS, LPS+SCF, PALS (3D) or correspondence (2D/3D, linear small-strain law or in 3D the
-// hypo-elastic one, Littlewood hourglass --hourglass C; --conventions peridigm and one option per
-// choice select Peridigm's forms, problems/pd_run_conventions.hpp) (single material; block ids are passed through to the VTU files only), bond
+// hypo-elastic one, Littlewood hourglass --hourglass C; --conventions peridigm: Peridigm's forms,
+// problems/pd_run_conventions.hpp) (single material; block ids are passed through to the VTU files only), bond
 // family |xi| <= delta, velocity Verlet (pd::Explicit), fixed points held at their initial
 // displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
 // c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14). --s0: critical-stretch bond breaking (spec/000c sec. 2.2)
@@ -28,7 +28,6 @@
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_checks.hpp"
-#include "pd_run_conventions.hpp"
 #include "pd_run_integrate.hpp"
 
 #include <algorithm>
@@ -83,9 +82,8 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     // The model by name (models/registry.hpp); the surface correction of PMB (reference: its own
     // bulk energy) or LPS (reference: the classical energy); none: no change.
     const Conventions& cv = cfg.conventions;
-    const pd::ModelChoice choice{.name = cfg.model, .material = cfg.material, .plane = cfg.plane, .measure = cfg.measure,
-                                 .C_hg = cfg.hourglass, .hypoelastic = cv.hypoelastic, .hourglass_direction = cv.hourglass,
-                                 .rotation = cv.rotation, .pals_base = cv.pals_base};
+    const pd::ModelChoice choice{.name = cfg.model, .material = cfg.material, .plane = cfg.plane, .measure = cfg.measure, .C_hg = cfg.hourglass,
+                                 .hypoelastic = cv.hypoelastic, .hourglass_direction = cv.hourglass, .rotation = cv.rotation, .pals_base = cv.pals_base};
     return pd::with_model(choice, body, bonds, [&](auto& model) {
         using Model = std::decay_t<decltype(model)>;
         if constexpr (std::is_same_v<Model, pd::Correspondence<D>>) warn_singular_shape_tensors(model, D);
