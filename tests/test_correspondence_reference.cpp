@@ -4,7 +4,7 @@
 //   K_i = sum omega xi (x) xi V_j,  F_i = (sum omega Y (x) xi V_j) K_i^-1,  P_i from the law,
 //   f_i = sum_j [omega V_j (P_i K_i^-1 + P_j K_j^-1) xi
 //               + C_hg c V_j/|xi| ((2Y - (F_i + F_j) xi).Y/|Y|^2) Y],   c = 18 K/(pi delta^4),
-// over intact bonds only. It calls nothing of the model: the reference uses Eigen, the bonds and
+// over intact bonds only (HourglassDirection::bond, Peridigm's form: |Y| in place of |Y|^2). It calls nothing of the model: the reference uses Eigen, the bonds and
 // the positions, so an error in the restructured sums or in the kernel split shows up here.
 #include "pd/bond_loop.hpp"
 #include "pd/models/correspondence.hpp"
@@ -30,7 +30,7 @@ enum class RefLaw { linear, svk };
 // Textbook force density [N/m^3] at every node; scale[i] = sum of the magnitudes of the bond terms
 // of node i (the size round-off is relative to).
 std::vector<V3> reference_force(const Body<3>& body, const Bonds& b, const Field<3>& y, const Elastic& mat, RefLaw law,
-                                double C_hg, std::vector<double>& scale)
+                                double C_hg, HourglassDirection dir, std::vector<double>& scale)
 {
     const std::size_t n = body.size();
     const double lambda = mat.K - 2 * mat.G / 3;
@@ -67,10 +67,11 @@ std::vector<V3> reference_force(const Body<3>& body, const Bonds& b, const Field
             const int j = b.partner[k];
             const V3 xi = xi_of(i, j), Y = Y_of(i, j);
             const V3 elastic = b.omega[k] * b.volume[k] * (A[i] * xi + A[j] * xi);
-            const V3 hourglass = C_hg * c * b.volume[k] / xi.norm() * (2 * Y - F[i] * xi - F[j] * xi).dot(Y) / Y.squaredNorm() * Y;
+            const double den = dir == HourglassDirection::unit ? Y.squaredNorm() : Y.norm();
+            const V3 hourglass = C_hg * c * b.volume[k] / xi.norm() * (2 * Y - F[i] * xi - F[j] * xi).dot(Y) / den * Y;
             f[i] += elastic + hourglass;
             scale[i] += b.omega[k] * b.volume[k] * ((A[i] * xi).norm() + (A[j] * xi).norm()) + hourglass.norm()
-                        + C_hg * c * b.volume[k] / xi.norm() * 2 * Y.norm();
+                        + C_hg * c * b.volume[k] / xi.norm() * 2 * Y.squaredNorm() / den * Y.norm();
         }
     return f;
 }
@@ -104,45 +105,50 @@ Field<3> random_deformation(const Body<3>& body, unsigned seed)
     return y;
 }
 
-// The model's force against the textbook one, C_hg = 0.02, linear and Saint Venant-Kirchhoff laws.
-// Tolerance: the two evaluations sum the same ~100 terms per node in different orders and
-// groupings (lane or chunk sums, i-end term factored out), each term with relative round-off
-// ~1e-15, so they agree to ~1e-14 of the sum of term magnitudes; 1e-12 leaves margin and is far
-// below any formula error (a wrong sign or a missing term changes f by O(1) of that scale).
+// The model's force against the textbook one, C_hg = 0.02, linear and Saint Venant-Kirchhoff laws,
+// both hourglass directions. Tolerance: the two evaluations sum the same ~100 terms per node in
+// different orders and groupings (lane or chunk sums, i-end term factored out), each term with
+// relative round-off ~1e-15, so they agree to ~1e-14 of the sum of term magnitudes; 1e-12 leaves
+// margin and is far below any formula error (a wrong sign or a missing term changes f by O(1) of that
+// scale). The hourglass part must stand well above that bound for the comparison to test it: 1e-3 of
+// the scale along Y/|Y|; along Y it is |Y| ~ 1e-3 m times smaller in SI, so 1e-6 (still 1e6 times
+// the tolerance).
 void expect_textbook_force(const Body<3>& body, const Bonds& b, const Field<3>& y)
 {
     const Elastic steel = Elastic::from_E_nu(200e9, 0.3);
     using C3 = Correspondence<3>;
-    for (RefLaw law : {RefLaw::linear, RefLaw::svk}) {
-        C3 model({steel, law == RefLaw::linear ? C3::Law::linear : C3::Law::saint_venant_kirchhoff, 0.02}, body, b);
-        Field<3> f;
-        internal_force(model, b, y, f);
-        std::vector<double> scale;
-        const std::vector<V3> ref = reference_force(body, b, y, steel, law, 0.02, scale);
-        double worst = 0, hg_part = 0;
-        for (std::size_t i = 0; i < body.size(); ++i)
-            for (int d = 0; d < 3; ++d) {
-                ASSERT_TRUE(std::isfinite(f.c[d][i]));
-                worst = std::max(worst, std::abs(f.c[d][i] - ref[i](d)) / scale[i]);
-            }
-        // The hourglass term matters in this deformation: without it the force changes by O(scale).
-        C3 plain({steel, law == RefLaw::linear ? C3::Law::linear : C3::Law::saint_venant_kirchhoff}, body, b);
-        Field<3> f0;
-        internal_force(plain, b, y, f0);
-        double worst0 = 0;
-        std::vector<double> scale0;
-        const std::vector<V3> ref0 = reference_force(body, b, y, steel, law, 0, scale0);
-        for (std::size_t i = 0; i < body.size(); ++i)
-            for (int d = 0; d < 3; ++d) {
-                hg_part = std::max(hg_part, std::abs(f.c[d][i] - f0.c[d][i]) / scale[i]);
-                worst0 = std::max(worst0, std::abs(f0.c[d][i] - ref0[i](d)) / scale0[i]);
-            }
-        std::printf("law %d: max abs(f - f_ref)/scale = %.2e (C_hg = 0: %.2e), max hourglass part/scale = %.2e\n",
-                    int(law), worst, worst0, hg_part);
-        EXPECT_LT(worst, 1e-12) << "law " << int(law);
-        EXPECT_LT(worst0, 1e-12) << "law " << int(law);
-        EXPECT_GT(hg_part, 1e-3) << "law " << int(law);
-    }
+    for (HourglassDirection dir : {HourglassDirection::unit, HourglassDirection::bond})
+        for (RefLaw law : {RefLaw::linear, RefLaw::svk}) {
+            const C3::Law model_law = law == RefLaw::linear ? C3::Law::linear : C3::Law::saint_venant_kirchhoff;
+            C3 model({.material = steel, .law = model_law, .C_hg = 0.02, .hourglass_direction = dir}, body, b);
+            Field<3> f;
+            internal_force(model, b, y, f);
+            std::vector<double> scale;
+            const std::vector<V3> ref = reference_force(body, b, y, steel, law, 0.02, dir, scale);
+            double worst = 0, hg_part = 0;
+            for (std::size_t i = 0; i < body.size(); ++i)
+                for (int d = 0; d < 3; ++d) {
+                    ASSERT_TRUE(std::isfinite(f.c[d][i]));
+                    worst = std::max(worst, std::abs(f.c[d][i] - ref[i](d)) / scale[i]);
+                }
+            // The hourglass term matters in this deformation: without it the force changes (header).
+            C3 plain({steel, model_law}, body, b);
+            Field<3> f0;
+            internal_force(plain, b, y, f0);
+            double worst0 = 0;
+            std::vector<double> scale0;
+            const std::vector<V3> ref0 = reference_force(body, b, y, steel, law, 0, dir, scale0);
+            for (std::size_t i = 0; i < body.size(); ++i)
+                for (int d = 0; d < 3; ++d) {
+                    hg_part = std::max(hg_part, std::abs(f.c[d][i] - f0.c[d][i]) / scale[i]);
+                    worst0 = std::max(worst0, std::abs(f0.c[d][i] - ref0[i](d)) / scale0[i]);
+                }
+            std::printf("direction %d, law %d: max abs(f - f_ref)/scale = %.2e (C_hg = 0: %.2e), max hourglass part/scale = %.2e\n",
+                        int(dir), int(law), worst, worst0, hg_part);
+            EXPECT_LT(worst, 1e-12) << "direction " << int(dir) << ", law " << int(law);
+            EXPECT_LT(worst0, 1e-12) << "law " << int(law);
+            EXPECT_GT(hg_part, dir == HourglassDirection::unit ? 1e-3 : 1e-6) << "direction " << int(dir) << ", law " << int(law);
+        }
 }
 }  // namespace
 

@@ -13,12 +13,13 @@
 //   Law::flanagan_taylor  hypoelastic rate form on the unrotated Cauchy stress (3D only), advanced by
 //                         update_stress(bonds, y, v, dt) (000b sec. 1.5 [CODE] steps 1-8, errata 2-3):
 //                         sigma_hat += (K tr(d) I + 2 G dev(d)) dt, sigma = R sigma_hat R^T, P = J sigma F^-T.
-// Littlewood hourglass control (000b sec. 1.6, stabilising sign of erratum 4), from both ends:
+// Littlewood hourglass control (000b sec. 1.6, stabilising sign of erratum 4; the formula once in
+// models/hourglass.hpp for the per-node, AVX2 and chunk code), from both ends:
 //   t_hg = C_hg c ((y_j - y_i - F xi) . M)/|xi| M,  M = Y/|Y|,  c = PMB micromodulus (18K/(pi delta^4) in 3D),
 //   summed with F = F_i (bond i->j) and F = F_j (bond j->i): on i, C_hg c V_j ((2Y - (F_i + F_j) xi).M)/|xi| M.
 //   No omega factor (as Peridigm). C_hg = 0 (default) switches it off; the source uses 0.02.
 //   HourglassDirection::bond (Peridigm's form): along Y instead of M, i.e. times |Y| (the force then
-//   carries an extra length in the input's unit); per-node code only (no vectorised path).
+//   carries an extra length in the input's unit).
 // A node whose K is singular (fewer than D independent intact bonds; the rule of models/shape_tensor.hpp)
 // gets K^-1 = 0 and F = I: no stress force.
 // Usage: internal_force(model, bonds, y, f) (bond_loop.hpp) runs point_pass (K on damage, F, P) and the

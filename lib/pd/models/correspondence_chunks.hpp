@@ -6,7 +6,8 @@
 // those of Correspondence (correspondence.hpp), summed bond by bond in family order per lane:
 //   deformation sums   N_l = sum_r (y_(j_r + l) - y_(i0 + l)) (x) omega V_r xi_r
 //   bond force         f_l = sum_r A_(j_r + l) omega V_r xi_r
-//                          + hg_r ((2Y - (F_l + F_(j_r + l)) xi_r).Y / |Y|^2) Y,   Y = y_(j_r + l) - y_(i0 + l)
+//                          + t Y,   t the hourglass formula (hourglass.hpp) with Gx = (F_l + F_(j_r + l)) xi_r,
+//                                   Y = y_(j_r + l) - y_(i0 + l)
 //                      plus the i-end term P_l K_l^-1 m_xi of the point pass (f_own),
 // with A = P K^-1 and F read from structure-of-arrays copies (entry a + 3 c of node j at
 // soa[(a + 3 c) n + j] for A, soa[(9 + a + 3 c) n + j] for F, stride n = soa_stride(nodes)); W = 8
@@ -15,6 +16,7 @@
 #include "pd/core/bonds.hpp"
 #include "pd/simd/chunk_vector.hpp"
 #include "pd/core/field.hpp"
+#include "pd/models/hourglass.hpp"
 #include "pd/core/parallel.hpp"
 #include "pd/simd/translated_families.hpp"
 
@@ -109,7 +111,7 @@ inline void chunk_deformation_sums(const TemplateBond* tb, std::int64_t s, int i
 // all chunks of the run, with the partial sums kept in f: the partner values of one block (21
 // arrays) stay in L1 from one chunk to the next, which those of a whole family do not. Each lane
 // still adds its bonds in family order, as a chunk taken alone would.
-template <bool Hourglass>
+template <bool Hourglass, bool AlongBond>
 inline void run_forces(const TemplateBond* tb, std::int64_t s, const int* start, int chunks, const double* const y[3],
                        const double* soa, std::size_t n, const double* const f_own[3], double* const f[3])
 {
@@ -130,16 +132,13 @@ inline void run_forces(const TemplateBond* tb, std::int64_t s, const int* start,
                 for (int a = 0; a < 3; ++a)
                     for (int c = 0; c < 3; ++c) acc[a] += load_chunk(soa + (a + 3 * c) * n + j) * tb[r].wxi[c];
                 if constexpr (Hourglass) {
-                    vchunk Y[3], y2 = {}, gY = {};
+                    vchunk Y[3], Gx[3];
                     for (int a = 0; a < 3; ++a) {
                         Y[a] = load_chunk(y[a] + j) - yi[a];
-                        vchunk g = {};
-                        for (int c = 0; c < 3; ++c) g += (Fi[a + 3 * c] + load_chunk(soa + (9 + a + 3 * c) * n + j)) * tb[r].xi[c];
-                        y2 += Y[a] * Y[a];
-                        gY += g * Y[a];
+                        Gx[a] = vchunk{};
+                        for (int c = 0; c < 3; ++c) Gx[a] += (Fi[a + 3 * c] + load_chunk(soa + (9 + a + 3 * c) * n + j)) * tb[r].xi[c];
                     }
-                    const vchunk den = y2 > vchunk{} ? y2 : splat(1.0);  // |Y| = 0 (collapsed bond): no hourglass force
-                    const vchunk t = tb[r].hg * (2.0 * y2 - gY) / den;
+                    const vchunk t = hourglass_scalar<3, AlongBond>(Gx, Y, tb[r].hg);
                     for (int a = 0; a < 3; ++a) acc[a] += t * Y[a];
                 }
             }

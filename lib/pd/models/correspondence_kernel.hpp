@@ -7,6 +7,7 @@
 #include "pd/core/field.hpp"
 #include "pd/models/correspondence_chunks.hpp"
 #include "pd/models/correspondence_simd.hpp"
+#include "pd/models/hourglass.hpp"
 #include "pd/simd/translated_families.hpp"
 
 #include <cmath>
@@ -19,9 +20,8 @@ namespace pd {
 //   omega V_j (P_i K_i^-1 + P_j K_j^-1) xi  +  c_hg V_j/|xi| ((2Y - (F_i + F_j) xi).Y / |Y|^2) Y,
 // (second term only when Hourglass) is split: the i-end term summed over the family is
 // P_i K_i^-1 m_xi (node_force, once per node); bond_force gives the rest. Branch-free plain
-// arithmetic on raw arrays, so that the bond loop vectorises it; |Y| = 0 (a collapsed broken
-// bond) gives a zero hourglass force. AlongBond (HourglassDirection::bond, Peridigm's form): the
-// hourglass term divided by |Y| instead of |Y|^2; it has no chunk or AVX2 path.
+// arithmetic on raw arrays, so that the bond loop vectorises it. The hourglass term is the formula of
+// models/hourglass.hpp (AlongBond: HourglassDirection::bond), which the AVX2 and chunk paths share.
 template <int D, bool Hourglass, bool AlongBond = false>
 struct CorrespondenceKernel {
     static constexpr bool ordinary = false;
@@ -67,23 +67,20 @@ struct CorrespondenceKernel {
         if constexpr (Hourglass) f += hourglass_force(i, k, j, Y);
         return f;
     }
-    // The hourglass term of bond_force [N/m^3] (bond work without it, bond_loop.hpp).
+    // The hourglass term of bond_force [N/m^3] (models/hourglass.hpp; bond work without it, bond_loop.hpp).
     Vec<D> hourglass_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const requires Hourglass
     {
         const double *Fi = F + DD * i, *Fj = F + DD * static_cast<std::size_t>(j);
-        double proj = 0, y2 = 0;  // (2Y - (F_i + F_j) xi).Y and |Y|^2 [m^2]
+        double Gx[D];  // (F_i + F_j) xi [m]
         for (int a = 0; a < D; ++a) {
-            double g = 0;
-            for (int c = 0; c < D; ++c) g += (Fi[a + D * c] + Fj[a + D * c]) * (x[c][j] - x[c][i]);
-            proj += (2 * Y[a] - g) * Y[a];
-            y2 += Y[a] * Y[a];
+            Gx[a] = 0;
+            for (int c = 0; c < D; ++c) Gx[a] += (Fi[a + D * c] + Fj[a + D * c]) * (x[c][j] - x[c][i]);
         }
-        const double den = AlongBond ? std::sqrt(y2) : y2;  // |Y| or |Y|^2 [m or m^2]
-        return (hg[k] * proj / (y2 > 0 ? den : 1.0)) * Y;
+        return hourglass_scalar<D, AlongBond>(Gx, Y.c.data(), hg[k]) * Y;
     }
 #ifdef PD_CHUNK_WIDTH
     // Chunk hook of the bond loop (bond_loop.hpp): f of the nodes of run p's chunks, undamaged.
-    const TranslatedRuns* chunks(const Bonds& b) const { return !AlongBond && runs && runs->fits(b) ? runs : nullptr; }
+    const TranslatedRuns* chunks(const Bonds& b) const { return runs && runs->fits(b) ? runs : nullptr; }
     void run_force(int p, const Bonds&, const Field<D>& y, Field<D>& f) const
         requires(D == 3)
     {
@@ -91,7 +88,7 @@ struct CorrespondenceKernel {
         const int c0 = runs->run_chunks[p];
         const double* yc[3] = {y.c[0].data(), y.c[1].data(), y.c[2].data()};
         double* fc[3] = {f.c[0].data(), f.c[1].data(), f.c[2].data()};
-        detail::run_forces<Hourglass>(templates->bond.data() + tb, s, runs->chunk_start.data() + c0, runs->run_chunks[p + 1] - c0, yc, soa,
+        detail::run_forces<Hourglass, AlongBond>(templates->bond.data() + tb, s, runs->chunk_start.data() + c0, runs->run_chunks[p + 1] - c0, yc, soa,
                                       soa_n, f_own, fc);
     }
 #endif
@@ -99,10 +96,10 @@ struct CorrespondenceKernel {
     // The whole f_i (bond_loop.hpp, family kernel), 3D, vectorised within the bond
     // (correspondence_simd.hpp); Out: also the bond work of the pass (bond_loop.hpp).
     template <bool Damaged, bool Out = false>
-        requires(D == 3 && !AlongBond)
+        requires(D == 3)
     Vec<D> family_force(std::size_t i, const Bonds& b, const Field<D>& y, const BondWork* out = nullptr) const
     {
-        return detail::family_force_avx2<Hourglass, Damaged, Out>(*this, i, b, y, out);
+        return detail::family_force_avx2<Hourglass, AlongBond, Damaged, Out>(*this, i, b, y, out);
     }
 #endif
 };

@@ -5,7 +5,7 @@
 //   family_force_avx2    f_i of the bond kernel: the partner products A_j xi and (F_i + F_j) xi are
 //                        taken within the bond (3 broadcast xi components times 3 column loads of
 //                        the node block, 4-padded columns of A = P K^-1 then of F), transposed, and
-//                        the rest (Y, hourglass projection, division, sums) runs across 4 bonds;
+//                        the rest (Y, the hourglass formula of hourglass.hpp, sums) runs across 4 bonds;
 //                        Out: also the bond work (bond_loop.hpp) of the 4-bond groups holding a bond
 //                        with j > i, its force A_i xi omega V_j included (bond_work_avx2), its
 //                        hourglass term left out when out->hourglass is false.
@@ -18,6 +18,7 @@
 #include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
 #include "pd/core/field.hpp"
+#include "pd/models/hourglass.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -90,7 +91,7 @@ inline __m256d bond_work_avx2(const BondWork& o, std::size_t i, std::int64_t k0,
     return w;
 }
 
-template <bool Hourglass, bool Damaged, bool Out, class Kn>
+template <bool Hourglass, bool AlongBond, bool Damaged, bool Out, class Kn>
 Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Field<3>& y, const BondWork* out)
 {
     const std::int64_t kb = b.offset[i], ke = b.offset[i + 1];
@@ -136,15 +137,7 @@ Vec<3> family_force_avx2(const Kn& kn, std::size_t i, const Bonds& b, const Fiel
             }
             if constexpr (Hourglass) {
                 transpose(g, Gx);
-                const __m256d two = _mm256_set1_pd(2.0);
-                __m256d proj = _mm256_mul_pd(_mm256_fmsub_pd(two, Yx[0], Gx[0]), Yx[0]);
-                __m256d y2 = _mm256_mul_pd(Yx[0], Yx[0]);
-                for (int d = 1; d < 3; ++d) {
-                    proj = _mm256_fmadd_pd(_mm256_fmsub_pd(two, Yx[d], Gx[d]), Yx[d], proj);
-                    y2 = _mm256_fmadd_pd(Yx[d], Yx[d], y2);
-                }
-                const __m256d den = _mm256_blendv_pd(_mm256_set1_pd(1.0), y2, _mm256_cmp_pd(y2, _mm256_setzero_pd(), _CMP_GT_OQ));
-                const __m256d t = _mm256_div_pd(_mm256_mul_pd(_mm256_loadu_pd(kn.hg + k0), proj), den);
+                const __m256d t = hourglass_scalar<3, AlongBond>(Gx, Yx, _mm256_loadu_pd(kn.hg + k0));
                 for (int d = 0; d < 3; ++d) f[d] = _mm256_fmadd_pd(t, Yx[d], f[d]);
             }
             __m256d keep = _mm256_set1_pd(1.0);
