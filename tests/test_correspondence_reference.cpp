@@ -248,7 +248,7 @@ TEST(CorrespondenceReference, NodeMatricesOffGivesTheSameForcesAndMatrices)
     const std::vector<double> W_full = full.energy_density(b, y2), W_lean = lean.energy_density(b, y2);  // syncs
     double scale = 0;
     for (std::size_t i = 0; i < body.size(); ++i) scale = std::max(scale, full.sigma[i].cwiseAbs().maxCoeff());
-    // sigma: the sync repeats the chunk's operations (linear_stress_of), equal unless the compiler
+    // sigma: the sync repeats the chunk's operations (laws::small_strain_stress), equal unless the compiler
     // contracts a multiply-add differently in the scalar and the vector code, i.e. to one rounding
     // of |sigma| (1e-15 of its largest entry); W = 1/2 sigma : eps follows it (relative 1e-14, and
     // an absolute 1e-300 for a node with W = 0).

@@ -31,6 +31,18 @@ M green_lagrange(const M& F) { return 0.5 * (F.transpose() * F - M::Identity());
 template <class M>
 M lame_stress(const M& e, double lambda, double G) { return lambda * e.trace() * M::Identity() + 2 * G * e; }
 
+// The small-strain law in entry form, as the chunk kernels vectorise it (models/correspondence_chunks.hpp):
+//   sigma = G (F + F^T) + (lambda (tr F - 3) - 2 G) I,
+// lame_stress(small_strain(F)) with its terms grouped otherwise (equal to round-off). F and sigma are
+// column-major 3 x 3 arrays of T, a number or a vector of lanes (one node per lane).
+template <class T>
+void small_strain_stress(const T* F, double lambda, double G, T* sigma)
+{
+    const T tr = F[0] + F[4] + F[8] - 3.0;
+    for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) sigma[a + 3 * c] = G * (F[a + 3 * c] + F[c + 3 * a]) + (a == c ? lambda * tr - 2 * G : T{});
+}
+
 struct IsotropicElastic {
     double K = 0;  // bulk modulus [Pa]
     double G = 0;  // shear modulus [Pa]

@@ -311,7 +311,7 @@ struct Correspondence {
 
     // F, sigma, P and PKinv of the chunk nodes a point pass with node_matrices = false left in its
     // own arrays (no-op otherwise): F and P K^-1 from soa, sigma by the chunk's formula
-    // (correspondence_chunks.hpp, linear_stress_of), P = sigma. Safe from parallel code: the first caller
+    // (laws::small_strain_stress), P = sigma. Safe from parallel code: the first caller
     // fills them in, the others wait for it.
     void sync_node_matrices() const
     {

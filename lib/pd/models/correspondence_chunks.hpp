@@ -18,6 +18,7 @@
 #include "pd/core/field.hpp"
 #include "pd/models/hourglass.hpp"
 #include "pd/core/parallel.hpp"
+#include "pd/laws/elastic.hpp"
 #include "pd/simd/translated_families.hpp"
 
 #include <cstdint>
@@ -147,18 +148,6 @@ inline void run_forces(const TemplateBond* tb, std::int64_t s, const int* start,
     }
 }
 
-// The stress of chunk_linear_stress for one node (the same operations, so the same values):
-// sigma = G (F + F^T) + (lambda (tr F - 3) - 2 G) I.
-template <class Mat>
-Mat linear_stress_of(const Mat& F, double lambda, double G)
-{
-    Mat S;
-    const double tr = F(0, 0) + F(1, 1) + F(2, 2) - 3.0;
-    for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) S(a, c) = G * (F(a, c) + F(c, a)) + (a == c ? lambda * tr - 2 * G : 0.0);
-    return S;
-}
-
 // F, P K^-1, sigma and P = sigma per node from the chunk arrays, for the lanes of the regular chunks
 // that the chunked pass did not copy (Correspondence::sync_node_matrices).
 template <class Mat>
@@ -174,14 +163,14 @@ void sync_chunk_matrices(const TranslatedRuns& runs, const std::vector<std::uint
                 F[i](e % 3, e / 3) = soa[(9 + e) * n + i];
                 A[i](e % 3, e / 3) = soa[e * n + i];
             }
-            sigma[i] = linear_stress_of(F[i], lambda, G);
+            laws::small_strain_stress(F[i].data(), lambda, G, sigma[i].data());  // the chunk's operations
             P[i] = sigma[i];
         }
     });
 }
 
 // Law::linear for the W lanes of a chunk, from the deformation sums N[9][W] (column-major entries):
-//   F = N K^-1,  eps = sym(F) - I,  sigma = lambda tr(eps) I + 2 G eps,  A = sigma K^-1,  f_own = A m_xi,
+//   F = N K^-1,  sigma = laws::small_strain_stress(F),  A = sigma K^-1,  f_own = A m_xi,
 // with K^-1 and m_xi of the lanes from structure-of-arrays copies (entry e of node i at kinv[e n + i],
 // m_xi.c[c][i]). Out: F, sigma and A as [9][W], A and F into soa, f_own into its field arrays.
 inline void chunk_linear_stress(int i0, const double (*N)[PD_CHUNK_WIDTH], const double* kinv, std::size_t n,
@@ -195,9 +184,7 @@ inline void chunk_linear_stress(int i0, const double (*N)[PD_CHUNK_WIDTH], const
     }
     for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) Fv[a + 3 * c] = Nv[a] * Ki[3 * c] + Nv[a + 3] * Ki[1 + 3 * c] + Nv[a + 6] * Ki[2 + 3 * c];
-    const vchunk tr = Fv[0] + Fv[4] + Fv[8] - 3.0;
-    for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) Sv[a + 3 * c] = G * (Fv[a + 3 * c] + Fv[c + 3 * a]) + (a == c ? lambda * tr - 2 * G : vchunk{});
+    laws::small_strain_stress(Fv, lambda, G, Sv);
     vchunk fo[3] = {};
     for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) {
