@@ -29,6 +29,7 @@
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
+#include "pd/models/registry.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
 
 #include "pals_units_runs.hpp"
@@ -37,6 +38,7 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 namespace {
 
@@ -44,27 +46,18 @@ using pals_units::Outcome;
 using pals_units::Scene;
 using pals_units::Units;
 
-// Builds model `name` on scene s and calls fn(model, ADR row-sum bound, PMB micromodulus c for dt_crit).
+// Builds model `name` on scene s (models/registry.hpp) and calls fn(model, ADR row-sum bound, PMB
+// micromodulus c for dt_crit); PALS and correspondence take the micromodulus bound.
 template <class Fn>
 void with_model(const std::string& name, Scene& s, const pd::Elastic& mat, double C_hg, pd::PALS::Base base, Fn&& fn)
 {
-    const pd::PMB::Params pmb{.material = mat, .dim = 3};
-    const double c = pd::PMB::micromodulus(pmb, pd::Influence{}, s.delta);
+    const double c = pd::PMB::micromodulus({.material = mat, .dim = 3}, pd::Influence{}, s.delta);
     const pd::Field<3>& x = s.bar.body.x;
-    if (name == "pmb") { pd::PMB m(pmb, s.bonds); fn(m, pd::stiffness_bound(m, s.bonds, x), c); }
-    else if (name == "lps" || name == "lps-scf") {
-        pd::LPS m({.material = mat, .dim = 3}, s.bonds);
-        if (name == "lps-scf") m.apply_shear_correction(x);
-        fn(m, pd::stiffness_bound(m, s.bonds, x), c);
-    } else if (name == "pals") {
-        pd::PALS m({.material = mat, .base = base}, s.bar.body, s.bonds);
-        fn(m, pd::stiffness_bound_micromodulus(s.bonds, x, c), c);
-    }
-    else {
-        using C = pd::Correspondence<3>;
-        C m({.material = mat, .law = C::Law::linear, .C_hg = C_hg}, s.bar.body, s.bonds);
-        fn(m, pd::stiffness_bound_micromodulus(s.bonds, x, c), c);
-    }
+    pd::with_model(pd::ModelChoice{.name = name, .material = mat, .C_hg = C_hg, .pals_base = base}, s.bar.body, s.bonds, [&](auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<M, pd::PMB> || std::is_same_v<M, pd::LPS>) fn(m, pd::stiffness_bound(m, s.bonds, x), c);
+        else fn(m, pd::stiffness_bound_micromodulus(s.bonds, x, c), c);
+    });
 }
 
 }  // namespace
