@@ -37,11 +37,8 @@
 
 namespace {
 
-struct Specimen {
-    double L, W, T, U;   // length l2, width l1, thickness l3, end displacement [m]
-    double dx, delta;    // [m]
-    pd::GrippedBar bar;  // body, left and right grips
-    pd::BarGauge gauge;  // cross-section layers nearest L/2 -+ delta and their distance
+struct Specimen : pd::GaugedBar {  // length l2 = L, width l1 = W, thickness l3 = T; gauge layers nearest L/2 -+ delta
+    double U;                      // end displacement [m]
 };
 
 struct Outcome {
@@ -98,8 +95,7 @@ Outcome relax(Model& model, const pd::Field<3>& bound, const Specimen& s, pd::Bo
         f = adr.internal_force_density();
     }
     if (!o.converged) return o;
-    const double F = pd::axial_reaction(f, s.bar.body, s.bar.right);  // reaction of the loaded grip [N]
-    const double sigma = F / (s.W * s.T);                     // engineering stress [Pa]
+    const double sigma = pd::grip_stress(f, s);  // engineering stress [Pa]
     const double du = pd::mean_axial_displacement(u, s.gauge.sec_b) - pd::mean_axial_displacement(u, s.gauge.sec_a);
     o.E_meas = sigma / (du / s.gauge.dist);                   // (4.37)
     o.E_end = sigma / eps;
@@ -158,9 +154,7 @@ static int run_case(int argc, char** argv)
                 "conv", "iters", "E_meas_Pa", "E_end_Pa", "rel_error", "wall_s");
     for (int n : ns) {
         // 2. Discretisation: bar plus ceil(grip delta/dx) grip layers outside each end.
-        Specimen s{L, W, T, strain * L, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * (m * T / n)), {}};
-        s.gauge = pd::bar_gauge(s.bar.body, L, s.dx, s.delta);
-        if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two measuring sections coincide");
+        Specimen s{pd::gauged_bar(L, W, T, T / n, m * T / n, grip * (m * T / n)), strain * L};
         pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
         // 3. Models; ADR density from each model's stiffness bound (dynamic_relaxation.hpp).
         // Classical reference W_inf (the full lattice family does not fit in a bar 1-2 cells thick); kappa: PMB's.

@@ -34,12 +34,9 @@
 
 namespace {
 
-struct Bar {
-    double L, W, T, dx, delta;  // [m]
-    pd::Body<3> body;
-    pd::NodeSet left, right, section;  // grips; nodes of the mid-section layer
-    pd::BarGauge gauge;
-    int centre = 0, corner = 0;        // mid-section node nearest the axis, farthest from it
+struct Bar : pd::GaugedBar {
+    pd::NodeSet section;        // nodes of the mid-section layer
+    int centre = 0, corner = 0;  // mid-section node nearest the axis, farthest from it
 };
 
 struct Outcome {
@@ -56,24 +53,24 @@ Outcome load(Model& model, const Bar& s, pd::Bonds& bonds, double strain, int st
              const pd::laws::JohnsonCook& jc, const std::filesystem::path& out, const std::string& name)
 {
     const pd::io::Timer timer;
-    pd::DynamicRelaxation<3, Model> adr(s.body, bonds, model, stiffness_bound(model, bonds, s.body.x));
+    pd::DynamicRelaxation<3, Model> adr(s.bar.body, bonds, model, stiffness_bound(model, bonds, s.bar.body.x));
     pd::io::CsvWriter curve(out / ("curve_" + name + ".csv"),
                             {"step", "U_m", "eps_end", "eps_gauge", "sigma_eng_Pa", "ep_centre", "sigma_eq_centre_Pa",
                              "sigma_ref_Pa", "ep_corner", "ep_section_mean", "adr_iterations"});
-    pd::Field<3> u(s.body.size());
+    pd::Field<3> u(s.bar.body.size());
     std::vector<double> ep_first(s.section.size(), NAN);
     std::vector<std::pair<double, double>> eng;  // (eps_gauge, sigma_eng) per step
     Outcome o;
     for (int k = 1; k <= steps; ++k) {
         const double U = strain * s.L * k / steps, dU = strain * s.L / steps;  // [m]
-        for (std::size_t i = 0; i < s.body.size(); ++i) u.c[0][i] += dU * std::clamp(s.body.x.c[0][i] / s.L, 0.0, 1.0);
+        for (std::size_t i = 0; i < s.bar.body.size(); ++i) u.c[0][i] += dU * std::clamp(s.bar.body.x.c[0][i] / s.L, 0.0, 1.0);
         pd::Boundary<3> bc;
-        pd::grip_bar_ends(bc, s.left, s.right, pd::TimeFunction::constant(U), pd::Grips::axial);
+        pd::grip_bar_ends(bc, s.bar.left, s.bar.right, pd::TimeFunction::constant(U), pd::Grips::axial);
         const pd::RelaxationResult r = adr.solve(u, bc, 0, tol, max_iter);
         o.iterations += r.iterations;
         if (!r.converged) {
             int bad = -1;
-            for (std::size_t i = 0; i < s.body.size() && bad < 0; ++i)
+            for (std::size_t i = 0; i < s.bar.body.size() && bad < 0; ++i)
                 for (int d = 0; d < 3; ++d) if (!std::isfinite(u.c[d][i])) bad = static_cast<int>(i);
             o.message = "load step " + std::to_string(k) + ": " + r.message +
                         (bad >= 0 ? " (first non-finite node " + std::to_string(bad) + ")" : "");
@@ -81,8 +78,7 @@ Outcome load(Model& model, const Bar& s, pd::Bonds& bonds, double strain, int st
         }
         model.commit();
         const auto& p = model.pts;
-        const double F = pd::axial_reaction(adr.internal_force_density(), s.body, s.right);  // [N]
-        o.sigma_eng = F / (s.W * s.T);
+        o.sigma_eng = pd::grip_stress(adr.internal_force_density(), s);
         const double eps_g = (pd::mean_axial_displacement(u, s.gauge.sec_b) - pd::mean_axial_displacement(u, s.gauge.sec_a)) / s.gauge.dist;
         double ep_mean = 0;
         for (int i : s.section) ep_mean += p.ep[i] / s.section.size();
@@ -108,7 +104,7 @@ Outcome load(Model& model, const Bar& s, pd::Bonds& bonds, double strain, int st
     }
     pd::io::CsvWriter mid(out / ("midsection_" + name + ".csv"), {"y_m", "z_m", "ep_at_first_section_yield", "ep_last"});
     for (std::size_t q = 0; q < s.section.size(); ++q)
-        mid.row({s.body.x.c[1][s.section[q]], s.body.x.c[2][s.section[q]], ep_first[q], model.pts.ep[s.section[q]]});
+        mid.row({s.bar.body.x.c[1][s.section[q]], s.bar.body.x.c[2][s.section[q]], ep_first[q], model.pts.ep[s.section[q]]});
     o.wall_s = timer.seconds();
     return o;
 }
@@ -156,30 +152,26 @@ static int run_case(int argc, char** argv)
     const std::filesystem::path& out = run.out();
 
     // 2. Discretisation: the gripped bar, mid-section layer, its centre and corner nodes.
-    Bar s{L, W, T, T / n, m * T / n, {}, {}, {}, {}, {}};
-    pd::GrippedBar gb = pd::gripped_bar(L, W, T, s.dx, grip * s.delta);
-    s.body = std::move(gb.body), s.left = std::move(gb.left), s.right = std::move(gb.right);
-    s.gauge = pd::bar_gauge(s.body, L, s.dx, s.delta);
-    if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two measuring sections coincide");
+    Bar s{pd::gauged_bar(L, W, T, T / n, m * T / n, grip * (m * T / n)), {}, 0, 0};
     const long mid_layer = (std::lround(L / s.dx) - 1) / 2;
     double r_min = INFINITY, r_max = -1;
     for (int i : s.gauge.mid) {
-        if (pd::bar_layer(s.body.x.c[0][i], s.dx) != mid_layer) continue;
+        if (pd::bar_layer(s.bar.body.x.c[0][i], s.dx) != mid_layer) continue;
         s.section.push_back(i);
-        const double r = std::hypot(s.body.x.c[1][i] - W / 2, s.body.x.c[2][i] - T / 2);
+        const double r = std::hypot(s.bar.body.x.c[1][i] - W / 2, s.bar.body.x.c[2][i] - T / 2);
         if (r < r_min) r_min = r, s.centre = i;
         if (r > r_max) r_max = r, s.corner = i;
     }
-    pd::Bonds bonds = pd::build_bonds(s.body, s.delta);
-    std::printf("bar: %zu nodes, %zu bonds, dx = %.3e m, delta = %.3e m, mid-section %zu nodes\n", s.body.size(), bonds.size(),
+    pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
+    std::printf("bar: %zu nodes, %zu bonds, dx = %.3e m, delta = %.3e m, mid-section %zu nodes\n", s.bar.body.size(), bonds.size(),
                 s.dx, s.delta, s.section.size());
 
     // 3. Material: J2/Johnson-Cook (C = 0, no softening: quasi-static, isothermal) in the central part.
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     const pd::laws::JohnsonCook jc{.A = A, .B = B, .n = n_hard};
     const double yield_02 = A + B * std::pow(0.002, n_hard);  // the 0.2 % offset yield of the curve, written out [Pa]
-    std::vector<std::uint8_t> plastic(s.body.size());
-    for (std::size_t i = 0; i < s.body.size(); ++i) plastic[i] = std::abs(s.body.x.c[0][i] - L / 2) <= plastic_part * L / 2;
+    std::vector<std::uint8_t> plastic(s.bar.body.size());
+    for (std::size_t i = 0; i < s.bar.body.size(); ++i) plastic[i] = std::abs(s.bar.body.x.c[0][i] - L / 2) <= plastic_part * L / 2;
 
     // 4.-5. Load steps per model.
     std::vector<std::string> models{"correspondence", "lps", "lps-scf", "pals"};
@@ -189,16 +181,16 @@ static int run_case(int argc, char** argv)
     for (const std::string& name : models) {
         Outcome o;
         if (name == "correspondence") {
-            pd::PlasticCorrespondence model({.material = mat, .C_hg = C_hg}, s.body, bonds, jc);
+            pd::PlasticCorrespondence model({.material = mat, .C_hg = C_hg}, s.bar.body, bonds, jc);
             model.pts.plastic = plastic;
             o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
         } else if (name == "lps" || name == "lps-scf") {
             pd::PlasticLPS model({.material = mat, .dim = 3}, bonds, jc);
-            if (name == "lps-scf") model.lps.apply_shear_correction(s.body.x);  // Peridigm's SCF (models/scf.hpp)
+            if (name == "lps-scf") model.lps.apply_shear_correction(s.bar.body.x);  // Peridigm's SCF (models/scf.hpp)
             model.pts.plastic = plastic;
             o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
         } else {
-            pd::PlasticPALS model({.material = mat}, s.body, bonds, jc);
+            pd::PlasticPALS model({.material = mat}, s.bar.body, bonds, jc);
             model.pts.plastic = plastic;
             o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
         }

@@ -74,11 +74,9 @@ static int run_case(int argc, char** argv)
     run.start();
 
     // 2. Discretisation: bar plus grips; gauge layers at 0.5 l2 -+ delta, the mid-length layers.
-    Bar s{L, W, T, T / n, m * T / n, pd::gripped_bar(L, W, T, T / n, grip * m * T / n), {}};
-    s.gauge = pd::bar_gauge(s.g.body, L, s.dx, s.delta);
-    if (!(s.gauge.dist > 0)) opt.fail("option --m too large for the bar: the two gauge layers coincide");
-    pd::Bonds bonds = pd::build_bonds(s.g.body, s.delta);
-    std::printf("\nnodes %zu, bonds %zu, dx %.3e m, delta %.3e m, gauge %.3e m\n", s.g.body.size(), bonds.size(), s.dx, s.delta, s.gauge.dist);
+    const Bar s = pd::gauged_bar(L, W, T, T / n, m * T / n, grip * m * T / n);
+    pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
+    std::printf("\nnodes %zu, bonds %zu, dx %.3e m, delta %.3e m, gauge %.3e m\n", s.bar.body.size(), bonds.size(), s.dx, s.delta, s.gauge.dist);
 
     // 3.-5. Models, load stepping by ADR (density: the model's reference-tangent bound).
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
@@ -89,7 +87,7 @@ static int run_case(int argc, char** argv)
     std::map<std::string, Run> runs;
     for (const std::string& name : models) {
         using Corr = pd::Correspondence<3>;
-        const pd::Body<3>& body = s.g.body;
+        const pd::Body<3>& body = s.bar.body;
         auto load_steps = [&](auto& model, UniaxialLaw law, auto commit) {  // density: the model's reference-tangent bound
             return stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit, run.checkpoints());
         };

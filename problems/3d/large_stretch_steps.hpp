@@ -44,11 +44,7 @@ struct Loading {   // the load stepping (options)
     double safety;  // ADR density safety factor over the reference-tangent bound [-]
 };
 
-struct Bar {
-    double L, W, T, dx, delta;
-    pd::GrippedBar g;
-    pd::BarGauge gauge;  // gauge layers (0.5 l2 -+ delta), gauge length, the mid-length layers
-};
+using Bar = pd::GaugedBar;  // gauge layers at 0.5 l2 -+ delta
 
 // Load stepping by ADR; `commit` ends each converged step (Flanagan-Taylor), no-op otherwise. The
 // load steps are a restartable loop (io/checkpoints.hpp): its state is the converged fields of the
@@ -60,7 +56,7 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, pd::Bonds& bo
 {
     const auto [strain, steps, tol, max_iter, safety] = load;
     pd::io::Timer timer;
-    const pd::Body<3>& body = s.g.body;
+    const pd::Body<3>& body = s.bar.body;
     pd::DynamicRelaxation<3, Model> adr(body, bonds, model, bound);
     adr.safety = safety * pd::ref::max_tangent_ratio(law, mat.K, mat.G, 1 + strain);  // cover the stiffening
     pd::Field<3> u(body.size()), u_old(body.size()), y(body.size());  // u_old: converged field of step k - 2 (0: unloaded)
@@ -75,7 +71,7 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, pd::Bonds& bo
     cp.loop(steps, state, [] {}, [&](long k) {
         const double U = strain * s.L * k / steps;
         pd::Boundary<3> bc;
-        pd::grip_bar_ends(bc, s.g.left, s.g.right, pd::TimeFunction::constant(U), pd::Grips::axial);
+        pd::grip_bar_ends(bc, s.bar.left, s.bar.right, pd::TimeFunction::constant(U), pd::Grips::axial);
         if (k > 1) {  // secant predictor from the converged fields of steps k - 1 and k - 2
             const pd::Field<3> u_km1 = u;
             for (int d = 0; d < 3; ++d)
@@ -91,8 +87,7 @@ Run stretch(Model& model, const pd::Field<3>& bound, const Bar& s, pd::Bonds& bo
         pd::add_fields(body.x, u, y);
         commit(bonds, y);
         Point p{.strain = U / s.L, .iterations = r.iterations, .residual = r.residual};
-        const double F = pd::axial_reaction(adr.internal_force_density(), body, s.g.right);  // right grip [N]
-        p.P = F / (s.W * s.T);
+        p.P = pd::grip_stress(adr.internal_force_density(), s);
         const pd::GaugeStretches g = pd::gauge_stretches(body.x, u, s.gauge);
         p.lambda = g.lambda, p.mu_y = g.mu_y, p.mu_z = g.mu_z;
         if (!(std::isfinite(p.lambda) && p.lambda > 0 && p.mu_y > 0 && p.mu_z > 0)) {  // e.g. a section turned inside out

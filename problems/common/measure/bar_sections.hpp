@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
 
 namespace pd {
 
@@ -62,6 +63,25 @@ inline double axial_reaction(const Field<3>& f, const Body<3>& body, const NodeS
     for (int i : grip) F -= f.c[0][i] * body.volume[i];
     return F;
 }
+
+// The specimen of the bar drivers: a gripped bar (pd::gripped_bar, grip length `grip` outside each
+// end) with its gauge. Throws std::invalid_argument (exit status 2 through guarded_main) when delta is
+// so large that both gauge layers are one layer.
+struct GaugedBar {
+    double L, W, T, dx, delta;  // [m]
+    GrippedBar bar;             // body, left and right grips
+    BarGauge gauge;
+};
+inline GaugedBar gauged_bar(double L, double W, double T, double dx, double delta, double grip)
+{
+    GaugedBar s{L, W, T, dx, delta, gripped_bar(L, W, T, dx, grip), {}};
+    s.gauge = bar_gauge(s.bar.body, L, dx, delta);
+    if (!(s.gauge.dist > 0)) throw std::invalid_argument("option --m too large for the bar: the two gauge layers coincide");
+    return s;
+}
+
+// Engineering stress sigma = F/(W T) [Pa], F the reaction of the pulled (right) grip (header).
+inline double grip_stress(const Field<3>& f, const GaugedBar& s) { return axial_reaction(f, s.bar.body, s.bar.right) / (s.W * s.T); }
 
 // Mean axial displacement u_x over a node set [m].
 inline double mean_axial_displacement(const Field<3>& u, const NodeSet& set)
