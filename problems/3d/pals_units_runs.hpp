@@ -26,25 +26,21 @@ struct Units {
     double stress() const { return M / (L * T * T); }   // one stress unit [Pa]
 };
 
-// One lattice in one unit system (all members in that system's units).
-struct Scene {
-    double L, W, T, U, dx, delta, t_ramp, rho, dist = 0;
-    pd::GrippedBar bar;
+// One lattice in one unit system (all members in that system's units): the gauged bar (grips 2 delta).
+struct Scene : pd::GaugedBar {
+    double U, t_ramp, rho;
     pd::Bonds bonds;
-    std::vector<int> sec_a, sec_b, mid_a, mid_b;  // layers nearest L/2 -+ delta; their nodes within dx of the axis
+    std::vector<int> sec_a, sec_b, mid_a, mid_b;  // gauge layers (axis nodes last); their nodes within dx of the axis
 };
 
 Scene make_scene(const Units& u, double L, double W, double T, double strain, double dx, double m, double t_ramp, double rho)
 {
-    Scene s{L / u.L, W / u.L, T / u.L, strain * L / u.L, dx / u.L, m * dx / u.L, t_ramp / u.T, rho / (u.M / (u.L * u.L * u.L)), 0, {}, {}, {}, {}, {}, {}};
-    s.bar = pd::gripped_bar(s.L, s.W, s.T, s.dx, 2 * s.delta);
+    const double l = u.L, delta = m * dx / l;
+    Scene s{pd::gauged_bar(L / l, W / l, T / l, dx / l, delta, 2 * delta), strain * L / l, t_ramp / u.T, rho / (u.M / (l * l * l)), {}, {}, {}, {}, {}};
     s.bonds = pd::build_bonds(s.bar.body, s.delta);
-    const pd::BarGauge g = pd::bar_gauge(s.bar.body, s.L, s.dx, s.delta);
-    s.dist = g.dist;
-    if (!(s.dist > 0)) throw std::invalid_argument("option --m too large for the bar: the two measuring sections coincide");
     auto axis = [&](int i) { return pd::near_bar_axis(s.bar.body, i, s.W, s.T, s.dx); };
-    for (int i : g.sec_a) (axis(i) ? s.mid_a : s.sec_a).push_back(i);  // each section: the axis nodes last
-    for (int i : g.sec_b) (axis(i) ? s.mid_b : s.sec_b).push_back(i);
+    for (int i : s.gauge.sec_a) (axis(i) ? s.mid_a : s.sec_a).push_back(i);  // each section: the axis nodes last
+    for (int i : s.gauge.sec_b) (axis(i) ? s.mid_b : s.sec_b).push_back(i);
     s.sec_a.insert(s.sec_a.end(), s.mid_a.begin(), s.mid_a.end());
     s.sec_b.insert(s.sec_b.end(), s.mid_b.begin(), s.mid_b.end());
     return s;
@@ -55,9 +51,9 @@ Scene make_scene(const Units& u, double L, double W, double T, double strain, do
 struct Measure { double sigma, eps, eps_axis; };
 Measure measure(const Scene& s, const pd::Field<3>& f, const pd::Field<3>& u)
 {
-    const double F = pd::axial_reaction(f, s.bar.body, s.bar.right);  // reaction on the bar at the pulled grip
     auto mean = [&](const pd::NodeSet& set) { return pd::mean_axial_displacement(u, set); };
-    return {F / (s.W * s.T), (mean(s.sec_b) - mean(s.sec_a)) / s.dist, (mean(s.mid_b) - mean(s.mid_a)) / s.dist};
+    const double dist = s.gauge.dist;
+    return {pd::grip_stress(f, s), (mean(s.sec_b) - mean(s.sec_a)) / dist, (mean(s.mid_b) - mean(s.mid_a)) / dist};
 }
 
 struct Outcome {
