@@ -2,7 +2,7 @@
 // bars of bar_stiffness_3d (spec/000b V2: 10 x 2 x 1 mm, E = 100 GPa, nu = 0.33, dx = l3/n,
 // delta = 3.05 dx, grips of 2 delta outside the bar, right grip u_x = 1 % of l2): PALS at n = 1, 2
 // and correspondence (linear law, C_hg = 0.02) at n = 2 diverged with the PMB stand-in density
-// (reports/3d/bar_stiffness.md); with the bounds they converge to the driver's tolerance 1e-6.
+// (reports/3d/bar_stiffness.md); with the bounds they converge (relative residual 1e-6).
 // Regression-free: the assertion is convergence, plus a finite positive reaction.
 #include "pd/models/correspondence.hpp"
 #include "pd/models/pals.hpp"

@@ -16,7 +16,7 @@
 // mid-length layers; true stress sigma = F/(l1 l3 mu_y mu_z); von Mises = |sigma| (uniaxial
 // stress); equivalent strain eps_eq = sqrt(2/3 h':h'), h' = dev diag(ln lambda, ln mu_y, ln mu_z).
 // Run: large_stretch_3d [--model all|pmb|lps|pals|correspondence|correspondence-svk] [--n 4]
-//      [--steps 50] [--strain 1] [--tol 1e-6] [--safety 1.2] [--quick] [--check] [--out DIR]
+//      [--steps 50] [--strain 1] [--tol 1e-9] [--safety 1.2] [--quick] [--check] [--out DIR]
 // Load stepping and gauge measurement: large_stretch_steps.hpp.
 // Writes: curves.csv (one row per model and step), summary.csv, params.csv.
 #include "problems/common/grips.hpp"
@@ -57,7 +57,7 @@ static int run_case(int argc, char** argv)
     std::string& which = opt.add_string("model", "all", "material model",
                                         {"all", "pmb", "lps", "pals", "correspondence", "correspondence-svk"});
     double& C_hg = opt.add("C-hg", 0.02, "correspondence hourglass coefficient (source: 0.02)");
-    double& tol = opt.add("tol", 1e-6, "ADR relative residual tolerance per load step");
+    double& tol = opt.add("tol", 1e-9, "ADR relative residual tolerance per load step");
     double& safety = opt.add("safety", 1.2, "ADR density safety factor over the reference-tangent bound");
     int& max_iter = opt.add_int("max-iter", 5000, "ADR iteration limit per load step (converged steps need < 600)");
     for (const char* o : {"tol", "safety"}) opt.require_positive(o);
