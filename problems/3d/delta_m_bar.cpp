@@ -17,8 +17,8 @@
 //   [--no-hourglass-work] [--lateral-free] [--quick] [--check] [--out DIR]
 // --rate: the pull still ends at strain 0.002 (at 0.002/rate); the published times hold for 20 1/s only.
 // --lateral-free: the grips prescribe only the axial displacement (the lateral contraction is free).
-// --grips inside: the end layers of width delta of the 5 mm bar itself are the grips (this driver
-// until 2026-11-25: the free part then strains 1.1-1.3x the nominal strain).
+// --grips inside: the end layers of width delta of the 5 mm bar itself are the grips (the free part
+// then strains 1.1-1.3x the nominal strain).
 // --no-hourglass-work: the micropotential leaves out the work of the hourglass forces, as Peridigm's
 // (000c sec. 2.3 [CODE]); the default includes them (the work of the whole bond force).
 // Writes: fracture_times.csv (delta, m, criterion, ours, published, quasi-static, wall, grip strain at the
