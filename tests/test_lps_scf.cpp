@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "energy_gradient.hpp"
 #include "scf_fixtures.hpp"
 
 #include <cmath>
@@ -112,23 +113,5 @@ TEST(LPS_SCF, ForceIsEnergyGradientWithNonUniformSCF)
     std::uniform_real_distribution<double> U(-1e-8, 1e-8);
     Field<3> y = body.x;
     for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
-    auto total = [&](const Field<3>& yy) {
-        lps.point_pass(b, yy);
-        const auto W = lps.energy_density(b, yy);
-        double E = 0;
-        for (std::size_t i = 0; i < body.size(); ++i) E += W[i] * body.volume[i];
-        return E;
-    };
-    Field<3> f;
-    internal_force(lps, b, y, f);
-    for (int node : {0, 2 + 2 * 6 + 3 * 36}) {
-        const double scale = norm(f[node]) * body.volume[node];
-        for (int d = 0; d < 3; ++d) {
-            Field<3> yp = y, ym = y;
-            yp.c[d][node] += h;
-            ym.c[d][node] -= h;
-            const double dE = (total(yp) - total(ym)) / (2 * h);
-            EXPECT_NEAR(-f.c[d][node] * body.volume[node], dE, 1e-6 * scale) << "node " << node << " dir " << d;
-        }
-    }
+    pd_test::expect_force_is_energy_gradient(lps, b, body, y, {0, 2 + 2 * 6 + 3 * 36}, h, 1e-6, "LPS+SCF");
 }

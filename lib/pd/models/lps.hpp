@@ -29,6 +29,12 @@
 // alpha_i = SCF_i a_D G / m_i with SCF_i from models/scf.hpp (Peridigm's probe); W and the force
 // both use alpha_i, so the force stays the gradient of W. Without it (the default) every member
 // and result is exactly as before; with SCF_i = 1 the forces are bit-identical to no correction.
+// Thermal expansion (models/thermal_expansion.hpp, member `thermal`; owner node i's eps_i in bond
+// i -> j, as the source): e_mech = e - eps_i |xi| in (4.8)-(4.11). It enters per node only:
+//   theta_i = (D/m_i) (sum_j omega |xi| e V_j - eps_i M_i),  M_i = sum_j omega |xi|^2 V_j over the
+//   intact bonds with the weights of the dilatation (= m_i without damage or surface correction);
+//   t_i = omega (|xi| (p_i theta_i - alpha_i theta_i / D - alpha_i eps_i) + alpha_i e),
+// so the kernel and the chunks serve it unchanged (a_coef_i takes - alpha_i eps_i).
 // Cost (reports/3d/model_cost.md): internal_force uses Kernel (with_kernel), which reads
 // a_j = (p_j - alpha_j / D) theta_j and alpha_j precombined by point_pass instead of p_j, theta_j,
 // alpha_j, with no division by D per bond; bond_scalar still
@@ -42,6 +48,7 @@
 #include "pd/core/field.hpp"
 #include "pd/core/material.hpp"
 #include "pd/models/scf.hpp"
+#include "pd/models/thermal_expansion.hpp"
 #include "pd/core/parallel.hpp"
 #include "pd/simd/translated_families.hpp"
 
@@ -76,6 +83,8 @@ struct LPS {
     // SCF from positions, re-evaluated by recompute (intact rule); empty for given factors.
     std::function<std::vector<double>(const Bonds&)> scf_source;
     TranslatedRuns runs;              // chunks of translated families (translated_families.hpp)
+    ThermalExpansion thermal;         // header; inactive by default (set_thermal_expansion)
+    std::vector<double> thermal_moment;  // M_i of the header, while thermal expansion is active [m^5 in 3D]
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
@@ -104,6 +113,15 @@ struct LPS {
 #ifdef PD_CHUNK_WIDTH
         runs = find_translated_runs(*bonds, detail::chunk_width, {&bonds->length, &wV});
 #endif
+        thermal_moments(*bonds);
+    }
+
+    // Thermal expansion (header): the temperatures are read at each point pass.
+    void set_thermal_expansion(const ThermalExpansion& t)
+    {
+        t.validate(m.size());
+        thermal = t;
+        thermal_moments(*bonds);
     }
 
     // After bonds broke: with the intact rule, m_i over the intact bonds (4.8), p_coef, alpha and
@@ -111,6 +129,7 @@ struct LPS {
     void recompute(const Bonds& b)
     {
         bonds = &b;
+        thermal_moments(b);
         if (weighted_volume == Params::WeightedVolume::reference) return;
         weighted_volumes(b);
         if (scf_source) scf = scf_source(b);
@@ -158,7 +177,8 @@ struct LPS {
         const double L = bonds->length[k];
         const double e = ylen - L;
         const double dev = (alpha[i] * theta[i] + alpha[j] * theta[j]) / dim;
-        const double tij = L * (p_coef[i] * theta[i] + p_coef[j] * theta[j] - dev) + (alpha[i] + alpha[j]) * e;
+        const double th = thermal.active() ? alpha[i] * thermal.strain(i) + alpha[j] * thermal.strain(j) : 0.0;
+        const double tij = L * (p_coef[i] * theta[i] + p_coef[j] * theta[j] - dev - th) + (alpha[i] + alpha[j]) * e;
         return tij * wV[k] / ylen;
     }
 
@@ -200,7 +220,7 @@ struct LPS {
     {
         auto bond = [&](std::size_t i, std::int64_t k) {
             const double L = b.length[k];
-            const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L / dim;
+            const double ed = norm(y[b.partner[k]] - y[i]) - L * (1 + thermal.strain(i)) - theta[i] * L / dim;
             return wV[k] * ed * ed;
         };
         return node_sums(b, bond, [&](std::size_t i, double dev) { return 0.5 * kappa * theta[i] * theta[i] + 0.5 * alpha[i] * dev; });
@@ -233,12 +253,20 @@ private:
         }
     }
 
-    // theta_i = sum / m_i, sum = D sum_j omega |xi| e V_j, and a_coef_i.
+    // theta_i = sum / m_i, sum = D sum_j omega |xi| e V_j less D eps_i M_i (thermal), and a_coef_i.
     void set_dilatation(std::size_t i, double sum)
     {
-        const double th = m[i] > 0 ? sum / m[i] : 0.0;
+        const double eps = thermal.strain(i);
+        const double th = m[i] > 0 ? (eps != 0 ? sum - dim * eps * thermal_moment[i] : sum) / m[i] : 0.0;
         theta[i] = th;
-        a_coef[i] = (p_coef[i] - alpha[i] / dim) * th;
+        a_coef[i] = (p_coef[i] - alpha[i] / dim) * th - (eps != 0 ? alpha[i] * eps : 0.0);
+    }
+    // M_i (header) over the intact bonds with the current weights; none while thermal expansion is off.
+    void thermal_moments(const Bonds& b)
+    {
+        if (!thermal.active()) return thermal_moment.clear();
+        thermal_moment = node_sums(b, [&](std::size_t, std::int64_t k) { return wV[k] * b.length[k] * b.length[k]; },
+                                   [](std::size_t, double sum) { return sum; });
     }
 };
 

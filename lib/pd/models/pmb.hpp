@@ -9,6 +9,10 @@
 // reproduces W = (D^2/2) kappa_D s^2 exactly; `continuum` (default) is the published constant.
 // Damage: a broken bond carries no force (bond_loop.hpp) and PMB has no per-node constant, so a
 // damaged body is exactly the body built without the broken bonds (tests/test_damage_models.cpp).
+// Thermal expansion (models/thermal_expansion.hpp, member `thermal`): s = (|Y| - |xi| (1 + eps_ij))/|xi|
+// with eps_ij = (eps_i + eps_j)/2, the mean of the two ends' free thermal strains (each end's half of
+// the pair force with its owner node's eps, spec/000a eq. 2.80); the bond pass then takes
+// ThermalKernel, which also gathers theta_j.
 // Cost: nodes with translated families (translated_families.hpp: same |xi| and coef bond by bond) take
 // the chunk path of the bond loop, W nodes at a time (chunk_scalar). Change coef only through
 // scale_bonds, which finds the runs again.
@@ -19,6 +23,7 @@
 #include "pd/core/field.hpp"
 #include "pd/core/material.hpp"
 #include "pd/core/parallel.hpp"
+#include "pd/models/thermal_expansion.hpp"
 #include "pd/simd/translated_families.hpp"
 
 #include <stdexcept>
@@ -75,6 +80,48 @@ struct PMB {
         return coef[k] * (ylen - length[k]) / ylen;
     }
 
+    // Thermal expansion (header); inactive by default.
+    ThermalExpansion thermal;
+    void set_thermal_expansion(const ThermalExpansion& t)
+    {
+        if (bonds_) t.validate(bonds_->nodes());
+        thermal = t;
+    }
+    // Free thermal strain of bond k (i -> j): (eps_i + eps_j)/2 [-].
+    double bond_thermal_strain(std::size_t i, int j) const
+    {
+        return thermal.active() ? 0.5 * thermal.alpha * (((*thermal.theta)[i] - thermal.theta_ref) + ((*thermal.theta)[j] - thermal.theta_ref))
+                                : 0.0;
+    }
+
+    // Bond kernel with thermal expansion (header): bond_scalar with |xi| (1 + eps_ij) for |xi| in e.
+    struct ThermalKernel {
+        const PMB* pmb;
+        const double* theta;  // node temperatures
+        double half_alpha, theta_ref;
+        double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
+        {
+            const double rest = pmb->length[k] * (1 + half_alpha * ((theta[i] - theta_ref) + (theta[j] - theta_ref)));
+            return pmb->coef[k] * (ylen - rest) / ylen;
+        }
+        const TranslatedRuns* chunks(const Bonds& b) const { return pmb->chunks(b); }
+#ifdef PD_CHUNK_WIDTH
+        detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
+        {
+            using detail::load_chunk;
+            const detail::vchunk rest = pmb->length[k] * (1 + half_alpha * ((load_chunk(theta + i0) - theta_ref) + (load_chunk(theta + j) - theta_ref)));
+            return pmb->coef[k] * (ylen - rest) / ylen;
+        }
+#endif
+    };
+    // The bond pass's kernel: this model, or ThermalKernel when thermal expansion is active.
+    template <class Pass>
+    void with_kernel(Pass&& pass) const
+    {
+        if (thermal.active()) pass(ThermalKernel{this, thermal.theta->data(), 0.5 * thermal.alpha, thermal.theta_ref});
+        else pass(*this);
+    }
+
     // Chunk hooks of the bond loop (bond_loop.hpp): bond_scalar for the W nodes of a chunk.
     TranslatedRuns runs;
     const TranslatedRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
@@ -85,13 +132,13 @@ struct PMB {
     }
 #endif
 
-    // Strain energy density W_i = 1/4 sum_j c omega s^2 |xi| V_j [J/m^3] (intact bonds).
+    // Strain energy density W_i = 1/4 sum_j c omega s^2 |xi| V_j [J/m^3] (intact bonds; s mechanical).
     template <int D>
     std::vector<double> energy_density(const Bonds& bonds, const Field<D>& y) const
     {
         auto bond = [&](std::size_t i, std::int64_t k) {
             const double L = bonds.length[k];
-            const double s = (norm(y[bonds.partner[k]] - y[i]) - L) / L;
+            const double s = (norm(y[bonds.partner[k]] - y[i]) - L * (1 + bond_thermal_strain(i, bonds.partner[k]))) / L;
             return 0.25 * coef[k] * L * L * s * s;
         };
         return node_sums(bonds, bond, [](std::size_t, double sum) { return sum; });

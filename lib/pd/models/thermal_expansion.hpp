@@ -1,0 +1,42 @@
+// pd/models/thermal_expansion.hpp -- thermal expansion of the ordinary models (spec/000a sec. 2.11).
+// The mechanical extension of bond k (i -> j) is the extension less the free thermal one,
+//   e_mech = |Y| - |xi| - eps_i |xi|,   eps_i = alpha (theta_i - theta_ref)        (2.80, erratum E9)
+// with theta_i the temperature of the bond's owner node i, as the source's code; alpha is the linear
+// coefficient (erratum E6: ~1e-5 1/K). Both the dilatation and the forces use e_mech, so a body free
+// to expand by eps in every direction (y = (1 + eps) x) carries no force, and a body held at y = x is
+// under the hydrostatic stress -3 K eps (spec/000a V7).
+// A model holds one ThermalExpansion (member `thermal`, inactive by default: every result is then
+// exactly the isothermal one, at no cost). The temperatures are the caller's (a TemperatureField's
+// theta, a driver's vector), read at each force evaluation; they must outlive the model's use.
+// Models with thermal expansion: PMB (whose pair force takes the mean of the two ends' eps, which is
+// what the owner-node rule gives for a bond-based model: each end's half of the pair force uses its own
+// node) and LPS (with or without SCF: eps_i enters only per node, see lps.hpp).
+#pragma once
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pd {
+
+struct ThermalExpansion {
+    double alpha = 0;                            // linear thermal expansion coefficient [1/K]
+    double theta_ref = 0;                        // temperature of the stress-free reference state [K or C]
+    const std::vector<double>* theta = nullptr;  // node temperatures [as theta_ref]; null: no thermal strain
+
+    bool active() const { return theta != nullptr; }
+    // eps_i = alpha (theta_i - theta_ref) [-]; 0 when inactive.
+    double strain(std::size_t i) const { return theta ? alpha * ((*theta)[i] - theta_ref) : 0.0; }
+    // Throws std::invalid_argument naming what is wrong (a model calls it when attached).
+    void validate(std::size_t nodes) const
+    {
+        if (!std::isfinite(alpha)) throw std::invalid_argument("thermal expansion: alpha must be finite");
+        if (!std::isfinite(theta_ref)) throw std::invalid_argument("thermal expansion: theta_ref must be finite");
+        if (theta && theta->size() != nodes)
+            throw std::invalid_argument("thermal expansion: " + std::to_string(theta->size()) + " temperatures for " +
+                                        std::to_string(nodes) + " nodes");
+    }
+};
+
+}  // namespace pd

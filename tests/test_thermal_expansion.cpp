@@ -1,0 +1,194 @@
+// Thermal expansion of the ordinary models (models/thermal_expansion.hpp; spec/000a eq. 2.80 with
+// erratum E9, verification case V7) for PMB, LPS and LPS with SCF, on a bar long enough for the
+// chunk path (nodes 3 .. 16 of each 20-node row):
+// - a free body at y = (1 + eps) x with eps = alpha dtheta carries no force, also with broken bonds;
+// - a body held at y = x has the dilatation -3 eps at every node and the energy density of a fully
+//   constrained classical body, 9/2 K eps^2 (pressure 3 K eps, V7's hydrostatic -3 K alpha dtheta);
+// - theta = theta_ref everywhere gives the isothermal forces bit for bit;
+// - under a non-uniform temperature the force is still minus the gradient of the energy, and the
+//   chunk path agrees with the per-node path.
+#include "pd/bond_loop.hpp"
+#include "pd/core/lattice.hpp"
+#include "pd/models/lps.hpp"
+#include "pd/models/pmb.hpp"
+
+#include <gtest/gtest.h>
+
+#include "energy_gradient.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+using namespace pd;
+
+namespace {
+constexpr double dx = 1e-3, alpha = 1.2e-5, theta_ref = 293.15, heat = 50;  // [m], [1/K], [K], [K]
+const Elastic mat = Elastic::from_E_nu(200e9, 0.25);
+
+Body<3> bar() { return box<3>({{0, 0, 0}}, {{20 * dx, 5 * dx, 4 * dx}}, dx); }
+
+Field<3> scaled(const Body<3>& body, double s)
+{
+    Field<3> y = body.x;
+    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v *= s;
+    return y;
+}
+double max_norm(const Field<3>& f)
+{
+    double m = 0;
+    for (std::size_t i = 0; i < f.size(); ++i) m = std::max(m, norm(f[i]));
+    return m;
+}
+// The three models on b, each with thermal expansion from theta (null: none).
+template <class Fn>
+void for_each_model(const Bonds& b, const Body<3>& body, const std::vector<double>* theta, Fn&& fn)
+{
+    const ThermalExpansion t{alpha, theta_ref, theta};
+    PMB pmb({mat, 3}, b);
+    LPS lps({mat, 3}, b), scf({mat, 3}, b);
+    scf.apply_shear_correction(body.x);
+    if (theta) pmb.set_thermal_expansion(t), lps.set_thermal_expansion(t), scf.set_thermal_expansion(t);
+    fn("PMB", pmb);
+    fn("LPS", lps);
+    fn("LPS+SCF", scf);
+}
+}  // namespace
+
+TEST(ThermalExpansion, FreeExpansionCarriesNoForce)
+{
+    const Body<3> body = bar();
+    const std::vector<double> theta(body.size(), theta_ref + heat);
+    const Field<3> y = scaled(body, 1 + alpha * heat);
+    for (bool damaged : {false, true}) {
+        Bonds b = build_bonds(body, 3 * dx);
+        if (damaged) {
+            b.enable_damage();
+            for (std::size_t k = 0; k < b.size(); k += 7) b.break_pair(static_cast<std::int64_t>(k));
+        }
+        std::vector<double> scale;  // largest isothermal force at the same y
+        for_each_model(b, body, nullptr, [&](const char*, auto& model) {
+            if constexpr (requires { model.recompute(b); }) model.recompute(b);
+            Field<3> f;
+            internal_force(model, b, y, f);
+            scale.push_back(max_norm(f));
+        });
+        int q = 0;
+        for_each_model(b, body, &theta, [&](const char* name, auto& model) {
+            if constexpr (requires { model.recompute(b); }) model.recompute(b);
+            Field<3> f;
+            internal_force(model, b, y, f);
+            ASSERT_GT(scale[q], 0) << name;
+            EXPECT_LE(max_norm(f), 1e-10 * scale[q++]) << name << (damaged ? ", damaged" : "");
+        });
+    }
+}
+
+TEST(ThermalExpansion, ClampedBodyIsUnderHydrostaticPressure)
+{
+    const Body<3> body = bar();
+    Bonds b = build_bonds(body, 3 * dx);
+    const std::vector<double> theta(body.size(), theta_ref + heat);
+    const double eps = alpha * heat, W = 4.5 * mat.K * eps * eps;  // classical: K (tr eps_th)^2 / 2
+    for_each_model(b, body, &theta, [&](const char* name, auto& model) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, LPS>) {
+            model.point_pass(b, body.x);
+            const std::vector<double> w = model.energy_density(b, body.x);
+            for (std::size_t i = 0; i < body.size(); ++i) {  // every node, surfaces included
+                EXPECT_NEAR(model.theta[i], -3 * eps, 1e-12 * eps) << name << " node " << i;
+                EXPECT_NEAR(w[i], W, 1e-10 * W) << name << " node " << i;
+            }
+        }
+    });
+    // PMB, lattice calibration: exact at a node with a whole family; the bar is only 4-5 cells thick,
+    // so the centre node of a 9-cell cube.
+    const Body<3> cube = box<3>({{0, 0, 0}}, {{9 * dx, 9 * dx, 9 * dx}}, dx);
+    Bonds bc = build_bonds(cube, 3 * dx);
+    const std::vector<double> th(cube.size(), theta_ref + heat);
+    PMB pmb({mat, 3, Plane::strain, 1, PMB::Params::Calibration::lattice, dx}, bc);
+    pmb.set_thermal_expansion({alpha, theta_ref, &th});
+    const int mid = 4 + 4 * 9 + 4 * 81;
+    EXPECT_NEAR(pmb.energy_density(bc, cube.x)[mid], W, 1e-10 * W);
+}
+
+TEST(ThermalExpansion, ReferenceTemperatureGivesTheIsothermalForcesBitForBit)
+{
+    const Body<3> body = bar();
+    Bonds b = build_bonds(body, 3 * dx);
+    const std::vector<double> theta(body.size(), theta_ref);
+    std::mt19937 gen(3);
+    std::uniform_real_distribution<double> U(-1e-6, 1e-6);
+    Field<3> y = body.x;
+    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
+    std::vector<Field<3>> iso;
+    for_each_model(b, body, nullptr, [&](const char*, auto& model) { internal_force(model, b, y, iso.emplace_back()); });
+    int q = 0;
+    for_each_model(b, body, &theta, [&](const char* name, auto& model) {
+        Field<3> f;
+        internal_force(model, b, y, f);
+        for (int d = 0; d < 3; ++d) EXPECT_EQ(f.c[d], iso[q].c[d]) << name;
+        ++q;
+    });
+}
+
+// E = sum_i W_i V_i with the temperatures held: central differences at a corner, a surface and a
+// bulk node. Tolerance 1e-6 of |f_i V_i| (step 1e-9 m against displacements 1e-7 m, thermal
+// extensions ~1e-7 m; as LPS_SCF.ForceIsEnergyGradientWithNonUniformSCF).
+TEST(ThermalExpansion, ForceIsEnergyGradientUnderATemperatureField)
+{
+    const double h = 1e-9;
+    const Body<3> body = box<3>({{0, 0, 0}}, {{6 * dx, 6 * dx, 6 * dx}}, dx);
+    Bonds b = build_bonds(body, 3 * dx);
+    std::mt19937 gen(11);
+    std::uniform_real_distribution<double> U(-1e-7, 1e-7), T(-10, 10);
+    std::vector<double> theta(body.size());
+    for (auto& t : theta) t = theta_ref + heat + T(gen);
+    Field<3> y = body.x;
+    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
+    for_each_model(b, body, &theta, [&](const char* name, auto& model) {
+        pd_test::expect_force_is_energy_gradient(model, b, body, y, {0, 2 + 2 * 6, 2 + 2 * 6 + 3 * 36}, h, 1e-6, name);
+    });
+}
+
+// The chunk path (undamaged bonds) against the per-node path (the same bonds with damage enabled and
+// none broken) under a non-uniform temperature: the same terms summed in another order, so equal to
+// round-off (1e-12 of the largest force).
+TEST(ThermalExpansion, ChunkedAndPerNodePathsAgreeUnderATemperatureField)
+{
+    const Body<3> body = bar();
+    Bonds chunked = build_bonds(body, 3 * dx), per_node = chunked;
+    per_node.enable_damage();
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<double> T(-10, 10), U(-1e-7, 1e-7);
+    std::vector<double> theta(body.size());
+    for (auto& t : theta) t = theta_ref + heat + T(gen);
+    Field<3> y = body.x;
+    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
+    std::vector<Field<3>> ref;
+    for_each_model(per_node, body, &theta, [&](const char*, auto& model) { internal_force(model, per_node, y, ref.emplace_back()); });
+    int q = 0;
+    for_each_model(chunked, body, &theta, [&](const char* name, auto& model) {
+#ifdef PD_CHUNK_WIDTH
+        ASSERT_FALSE(model.runs.chunk_start.empty()) << name << ": no chunks on this bar";
+#endif
+        Field<3> f;
+        internal_force(model, chunked, y, f);
+        const double scale = max_norm(ref[q]);
+        for (std::size_t i = 0; i < body.size(); ++i) EXPECT_LE(norm(f[i] - ref[q][i]), 1e-12 * scale) << name << " node " << i;
+        ++q;
+    });
+}
+
+TEST(ThermalExpansion, RefusesATemperatureFieldOfAnotherBody)
+{
+    const Body<3> body = bar();
+    Bonds b = build_bonds(body, 3 * dx);
+    const std::vector<double> theta(body.size() - 1, theta_ref);
+    PMB pmb({mat, 3}, b);
+    LPS lps({mat, 3}, b);
+    EXPECT_THROW(pmb.set_thermal_expansion({alpha, theta_ref, &theta}), std::invalid_argument);
+    EXPECT_THROW(lps.set_thermal_expansion({alpha, theta_ref, &theta}), std::invalid_argument);
+    EXPECT_THROW(lps.set_thermal_expansion({NAN, theta_ref, nullptr}), std::invalid_argument);
+}
