@@ -9,8 +9,10 @@
 //   chunk path agrees with the per-node path.
 #include "pd/bond_loop.hpp"
 #include "pd/core/lattice.hpp"
+#include "pd/damage/critical_stretch.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pmb.hpp"
+#include "pd/models/viscoelastic_lps.hpp"
 
 #include <gtest/gtest.h>
 
@@ -20,6 +22,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 using namespace pd;
@@ -42,18 +45,20 @@ double max_norm(const Field<3>& f)
     for (std::size_t i = 0; i < f.size(); ++i) m = std::max(m, norm(f[i]));
     return m;
 }
-// The three models on b, each with thermal expansion from theta (null: none).
+// The models on b, each with thermal expansion from theta (null: none): PMB, LPS (intact and
+// reference weighted volume) and LPS+SCF.
 template <class Fn>
 void for_each_model(const Bonds& b, const Body<3>& body, const std::vector<double>* theta, Fn&& fn)
 {
     const ThermalExpansion t{alpha, theta_ref, theta};
     PMB pmb({mat, 3}, b);
-    LPS lps({mat, 3}, b), scf({mat, 3}, b);
+    LPS lps({mat, 3}, b), scf({mat, 3}, b), ref({mat, 3, Plane::strain, LPS::Params::WeightedVolume::reference}, b);
     scf.apply_shear_correction(body.x);
-    if (theta) pmb.set_thermal_expansion(t), lps.set_thermal_expansion(t), scf.set_thermal_expansion(t);
+    if (theta) pmb.set_thermal_expansion(t), lps.set_thermal_expansion(t), scf.set_thermal_expansion(t), ref.set_thermal_expansion(t);
     fn("PMB", pmb);
     fn("LPS", lps);
     fn("LPS+SCF", scf);
+    fn("LPS reference m", ref);
 }
 }  // namespace
 
@@ -111,6 +116,49 @@ TEST(ThermalExpansion, ClampedBodyIsUnderHydrostaticPressure)
     pmb.set_thermal_expansion({alpha, theta_ref, &th});
     const int mid = 4 + 4 * 9 + 4 * 81;
     EXPECT_NEAR(pmb.energy_density(bc, cube.x)[mid], W, 1e-10 * W);
+}
+
+// The owner-node rule (spec/000a E9): at y = x under any temperature field, every LPS node has
+// e_mech = -eps_i |xi| on all its bonds, hence theta_i = -3 eps_i and W_i = 9/2 K eps_i^2 whatever its
+// neighbours' temperatures (a bond-mean rule would mix them in).
+TEST(ThermalExpansion, ClampedLPSFollowsItsOwnNodesTemperature)
+{
+    const Body<3> body = bar();
+    Bonds b = build_bonds(body, 3 * dx);
+    std::mt19937 gen(13);
+    std::uniform_real_distribution<double> T(-40, 40);
+    std::vector<double> theta(body.size());
+    for (auto& t : theta) t = theta_ref + heat + T(gen);
+    for_each_model(b, body, &theta, [&](const char* name, auto& model) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, LPS>) {
+            model.point_pass(b, body.x);
+            const std::vector<double> w = model.energy_density(b, body.x);
+            for (std::size_t i = 0; i < body.size(); ++i) {
+                const double eps = alpha * (theta[i] - theta_ref), W = 4.5 * mat.K * eps * eps;
+                EXPECT_NEAR(model.theta[i], -3 * eps, 1e-12 * std::abs(eps)) << name << " node " << i;
+                EXPECT_NEAR(w[i], W, 1e-10 * W) << name << " node " << i;
+            }
+        }
+    });
+}
+
+// Critical stretch with the model's thermal expansion: a body heated free to eps = 2 s0 breaks no
+// bond (mechanical stretch 0) and every bond without it; the same body pulled mechanically to
+// (1 + eps + 2 s0) x breaks every bond.
+TEST(ThermalExpansion, CriticalStretchComparesTheMechanicalStretch)
+{
+    const Body<3> body = bar();
+    const std::vector<double> theta(body.size(), theta_ref + heat);
+    const double eps = alpha * heat, s0 = eps / 2;
+    for (double pull : {0.0, 2 * s0})
+        for (bool thermal : {true, false}) {
+            Bonds b = build_bonds(body, 3 * dx);
+            b.enable_damage();
+            CriticalStretch rule = CriticalStretch::uniform(s0);
+            if (thermal) rule.thermal = {alpha, theta_ref, &theta};
+            const long broken = rule.apply(b, scaled(body, 1 + eps + pull));
+            EXPECT_EQ(broken, thermal && pull == 0 ? 0 : static_cast<long>(b.size())) << "pull " << pull << (thermal ? ", thermal" : "");
+        }
 }
 
 TEST(ThermalExpansion, ReferenceTemperatureGivesTheIsothermalForcesBitForBit)
@@ -191,4 +239,21 @@ TEST(ThermalExpansion, RefusesATemperatureFieldOfAnotherBody)
     EXPECT_THROW(pmb.set_thermal_expansion({alpha, theta_ref, &theta}), std::invalid_argument);
     EXPECT_THROW(lps.set_thermal_expansion({alpha, theta_ref, &theta}), std::invalid_argument);
     EXPECT_THROW(lps.set_thermal_expansion({NAN, theta_ref, nullptr}), std::invalid_argument);
+}
+
+// Models that do not take it yet say so instead of ignoring part of it.
+TEST(ThermalExpansion, ModelsWithoutItRefuseIt)
+{
+    const Body<3> body = bar();
+    Bonds b = build_bonds(body, 3 * dx);
+    const std::vector<double> theta(body.size(), theta_ref + heat);
+    ViscoelasticLPS visco({{mat, 3}, 1.0, 1e-6}, b);
+    visco.lps.set_thermal_expansion({alpha, theta_ref, &theta});
+    EXPECT_THROW(visco.point_pass(b, body.x, 1e-9), std::invalid_argument);
+    const Body<2> plate = box<2>({{0, 0}}, {{6 * dx, 6 * dx}}, dx, dx);
+    Bonds b2 = build_bonds(plate, 3 * dx);
+    const std::vector<double> theta2(plate.size(), theta_ref + heat);
+    LPS strain({mat, 2, Plane::strain}, b2), stress({mat, 2, Plane::stress}, b2);
+    EXPECT_THROW(strain.set_thermal_expansion({alpha, theta_ref, &theta2}), std::invalid_argument);
+    EXPECT_NO_THROW(stress.set_thermal_expansion({alpha, theta_ref, &theta2}));
 }

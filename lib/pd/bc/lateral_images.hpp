@@ -8,6 +8,7 @@
 #include "pd/core/field.hpp"
 #include "pd/core/lattice.hpp"
 
+#include <stdexcept>
 #include <vector>
 
 namespace pd {
@@ -44,6 +45,8 @@ struct LateralImages {
     const ImageBlock& block;
     LateralImages(Model& m, const ImageBlock& b) : model(m), block(b)
     {
+        if constexpr (requires { m.thermal_expansion(); })
+            if (m.thermal_expansion().active()) throw std::invalid_argument("LateralImages: thermal expansion is not supported");
         if constexpr (has_point_pass)
             for (int g : b.ghosts) {
                 model.m[g] = model.m[b.image[g]];

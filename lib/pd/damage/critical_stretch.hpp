@@ -1,5 +1,8 @@
 // Critical-stretch damage (spec/000c sec. 2.2, spec/002 sec. 2.3): a bond breaks for good when its
-// stretch s = (|Y| - |xi|)/|xi| exceeds s0; bonds touching a no-fail node never break.
+// stretch s = (|Y| - |xi|)/|xi| exceeds s0; bonds touching a no-fail node never break. With the
+// model's thermal expansion given (member thermal, models/thermal_expansion.hpp) s is the mechanical
+// stretch s - (eps_i + eps_j)/2, the mean of the two ends so that a pair breaks as one (Peridigm tests
+// each directed bond with its owner's eps).
 // Point damage phi_i = 1 - sum_j intact V_j / sum_j V_j (spec/002 eq. 2.17).
 // Critical stretch from the fracture energy Gc [J/m^2]:
 //   PMB 3D        s0 = sqrt(5 Gc / (9 K delta))                      (Silling 2005; 000c eq. 8.9)
@@ -19,6 +22,7 @@
 #include "pd/core/state_archive.hpp"
 #include "pd/core/material.hpp"
 #include "pd/damage/singular_nodes.hpp"
+#include "pd/models/thermal_expansion.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -56,6 +60,7 @@ struct CriticalStretch {
     bool detach_singular = true;        // in a scene: the singular-node rule for correspondence (singular_nodes.hpp)
     std::vector<std::uint8_t> detached; // per node, 1 = all bonds break at the next break_bonds
     long detached_nodes = 0;            // nodes detached so far by the singular-node rule
+    ThermalExpansion thermal;           // the model's (header); inactive: the total stretch
 
     // A uniform critical stretch s0 [-], every other member at its default.
     static CriticalStretch uniform(double s0)
@@ -117,7 +122,8 @@ private:
             for_intact_bonds(b, i, [&](std::int64_t k, int j) {
                 if (!no_fail.empty() && no_fail[j]) return;
                 const double L = b.length[k];
-                if ((norm(y[j] - y[i]) - L) / L > s0_of(k)) { b.intact[k] = 0; ++broken; }
+                const double rest = thermal.active() ? L * (1 + 0.5 * (thermal.strain(i) + thermal.strain(j))) : L;
+                if ((norm(y[j] - y[i]) - rest) / L > s0_of(k)) { b.intact[k] = 0; ++broken; }
             });
         }
         return broken;

@@ -29,10 +29,11 @@
 // alpha_i = SCF_i a_D G / m_i with SCF_i from models/scf.hpp (Peridigm's probe); W and the force
 // both use alpha_i, so the force stays the gradient of W. Without it (the default) every member
 // and result is exactly as before; with SCF_i = 1 the forces are bit-identical to no correction.
-// Thermal expansion (models/thermal_expansion.hpp, member `thermal`; owner node i's eps_i in bond
+// Thermal expansion (models/thermal_expansion.hpp, set_thermal_expansion; owner node i's eps_i in bond
 // i -> j, as the source): e_mech = e - eps_i |xi| in (4.8)-(4.11). It enters per node only:
 //   theta_i = (D/m_i) (sum_j omega |xi| e V_j - eps_i M_i),  M_i = sum_j omega |xi|^2 V_j over the
-//   intact bonds with the weights of the dilatation (= m_i without damage or surface correction);
+//   intact bonds with the weights of the dilatation (= m_i unless bonds broke under the reference
+//   rule or scale_bonds changed the weights);
 //   t_i = omega (|xi| (p_i theta_i - alpha_i theta_i / D - alpha_i eps_i) + alpha_i e),
 // so the kernel and the chunks serve it unchanged (a_coef_i takes - alpha_i eps_i).
 // Cost (reports/3d/model_cost.md): internal_force uses Kernel (with_kernel), which reads
@@ -83,15 +84,13 @@ struct LPS {
     // SCF from positions, re-evaluated by recompute (intact rule); empty for given factors.
     std::function<std::vector<double>(const Bonds&)> scf_source;
     TranslatedRuns runs;              // chunks of translated families (translated_families.hpp)
-    ThermalExpansion thermal;         // header; inactive by default (set_thermal_expansion)
-    std::vector<double> thermal_moment;  // M_i of the header, while thermal expansion is active [m^5 in 3D]
 
     LPS() = default;
     LPS(const Params& p, const Bonds& b)
         : dim(p.dim), kappa(kappa_dim(p.material, p.dim, p.plane)), G(p.material.G),
           m(b.nodes(), 0.0), p_coef(b.nodes()), alpha(b.nodes()), theta(b.nodes(), 0.0), a_coef(b.nodes(), 0.0), wV(b.size()),
           bonds(&b),
-          weighted_volume(p.weighted_volume)
+          weighted_volume(p.weighted_volume), plane_strain_2d_(p.dim == 2 && p.plane == Plane::strain)
     {
         for (std::size_t k = 0; k < b.size(); ++k) wV[k] = b.omega[k] * b.volume[k];
         weighted_volumes(b);
@@ -119,10 +118,11 @@ struct LPS {
     // Thermal expansion (header): the temperatures are read at each point pass.
     void set_thermal_expansion(const ThermalExpansion& t)
     {
-        t.validate(m.size());
+        t.validate(m.size(), plane_strain_2d_);
         thermal = t;
         thermal_moments(*bonds);
     }
+    const ThermalExpansion& thermal_expansion() const { return thermal; }
 
     // After bonds broke: with the intact rule, m_i over the intact bonds (4.8), p_coef, alpha and
     // a position-based SCF_i rebuilt; with the reference rule nothing changes (see header).
@@ -227,6 +227,10 @@ struct LPS {
     }
 
 private:
+    bool plane_strain_2d_ = false;
+    ThermalExpansion thermal;             // header; inactive by default (set_thermal_expansion)
+    std::vector<double> thermal_moment;   // M_i of the header, while thermal expansion is active [m^5 in 3D]
+
     // m_i (4.8) over the whole family, or over the intact bonds under the intact rule; then
     // p_coef = D kappa / m_i and alpha = a_D G / m_i (no SCF).
     void weighted_volumes(const Bonds& b)

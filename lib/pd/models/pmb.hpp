@@ -9,7 +9,7 @@
 // reproduces W = (D^2/2) kappa_D s^2 exactly; `continuum` (default) is the published constant.
 // Damage: a broken bond carries no force (bond_loop.hpp) and PMB has no per-node constant, so a
 // damaged body is exactly the body built without the broken bonds (tests/test_damage_models.cpp).
-// Thermal expansion (models/thermal_expansion.hpp, member `thermal`): s = (|Y| - |xi| (1 + eps_ij))/|xi|
+// Thermal expansion (models/thermal_expansion.hpp, set_thermal_expansion): s = (|Y| - |xi| (1 + eps_ij))/|xi|
 // with eps_ij = (eps_i + eps_j)/2, the mean of the two ends' free thermal strains (each end's half of
 // the pair force with its owner node's eps, spec/000a eq. 2.80); the bond pass then takes
 // ThermalKernel, which also gathers theta_j.
@@ -58,7 +58,7 @@ struct PMB {
     PMB() = default;
     PMB(const Params& p, const Bonds& bonds)
         : c(micromodulus(p, bonds.influence, bonds.delta)),
-          coef(bonds.size()), length(bonds.length.data())
+          coef(bonds.size()), length(bonds.length.data()), plane_strain_2d_(p.dim == 2 && p.plane == Plane::strain)
     {
         for (std::size_t k = 0; k < bonds.size(); ++k) coef[k] = c * bonds.omega[k] * bonds.volume[k] / bonds.length[k];
         find_runs(bonds);
@@ -81,12 +81,12 @@ struct PMB {
     }
 
     // Thermal expansion (header); inactive by default.
-    ThermalExpansion thermal;
     void set_thermal_expansion(const ThermalExpansion& t)
     {
-        if (bonds_) t.validate(bonds_->nodes());
+        t.validate(bonds_ ? bonds_->nodes() : 0, plane_strain_2d_);
         thermal = t;
     }
+    const ThermalExpansion& thermal_expansion() const { return thermal; }
     // Free thermal strain of bond k (i -> j): (eps_i + eps_j)/2 [-].
     double bond_thermal_strain(std::size_t i, int j) const
     {
@@ -146,6 +146,8 @@ struct PMB {
 
 private:
     const Bonds* bonds_ = nullptr;  // the bonds the model was built on (as `length`)
+    bool plane_strain_2d_ = false;
+    ThermalExpansion thermal;
     void find_runs(const Bonds& b)
     {
         bonds_ = &b;

@@ -170,7 +170,9 @@ SurfaceFactors<D> surface_correction(const PMB& pmb, const Body<D>& body, const 
         const double n4 = D == 3 ? 1.0 / 5 : D == 2 ? 3.0 / 8 : 1.0;  // spherical average of n_k^4
         for (int a = 0; a < D; ++a) out.W_inf[a] = 0.5 * D * D * opt.kappa * n4 * opt.zeta * opt.zeta;
     }
-    detail::energy_method_factors(out, body, bonds, opt.zeta, [&](const Field<D>& y) { return pmb.energy_density(bonds, y); });
+    PMB probe = pmb;  // the reference body is isothermal
+    probe.set_thermal_expansion({});
+    detail::energy_method_factors(out, body, bonds, opt.zeta, [&](const Field<D>& y) { return probe.energy_density(bonds, y); });
     return out;
 }
 
@@ -186,7 +188,8 @@ SurfaceFactors<D> surface_correction(const LPS& lps, const Body<D>& body, const 
         throw std::invalid_argument("surface correction: model, body and bonds do not match");
     SurfaceFactors<D> out;
     for (int a = 0; a < D; ++a) out.W_inf[a] = (0.5 * lps.kappa + lps.G * (1.0 - 1.0 / D)) * opt.zeta * opt.zeta;
-    LPS probe = lps;  // the point pass writes theta
+    LPS probe = lps;  // the point pass writes theta; the reference body is isothermal
+    probe.set_thermal_expansion({});
     detail::energy_method_factors(out, body, bonds, opt.zeta, [&](const Field<D>& y) {
         probe.point_pass(bonds, y);
         return probe.energy_density(bonds, y);

@@ -5,9 +5,17 @@
 // coefficient (erratum E6: ~1e-5 1/K). Both the dilatation and the forces use e_mech, so a body free
 // to expand by eps in every direction (y = (1 + eps) x) carries no force, and a body held at y = x is
 // under the hydrostatic stress -3 K eps (spec/000a V7).
-// A model holds one ThermalExpansion (member `thermal`, inactive by default: every result is then
-// exactly the isothermal one, at no cost). The temperatures are the caller's (a TemperatureField's
-// theta, a driver's vector), read at each force evaluation; they must outlive the model's use.
+// A model holds one ThermalExpansion, set by set_thermal_expansion and read by thermal_expansion()
+// (inactive by default: every result is then exactly the isothermal one, at no cost). The temperatures
+// are the caller's (a TemperatureField's theta, a driver's vector), read at each force evaluation; they
+// must outlive the model's use. 2D plane strain is refused: its free in-plane strain is (1 + nu) alpha
+// dtheta (eps_zz = 0), a factor not written yet; 1D, 2D plane stress and 3D take alpha dtheta.
+// Damage: the critical-stretch rule compares the mechanical stretch when given the same
+// ThermalExpansion (damage/critical_stretch.hpp). The micropotential rule integrates the work of the
+// bond force over the whole motion, thermal expansion included (the source's code subtracts the
+// thermal bond velocity alpha dtheta_dot xi first, spec/000c sec. 2.3: not done here yet).
+// Wrappers of these models that have their own extension (viscoelastic and plastic LPS) and the
+// lateral images of bc/lateral_images.hpp refuse an active thermal expansion.
 // Models with thermal expansion: PMB (whose pair force takes the mean of the two ends' eps, which is
 // what the owner-node rule gives for a bond-based model: each end's half of the pair force uses its own
 // node) and LPS (with or without SCF: eps_i enters only per node, see lps.hpp).
@@ -29,11 +37,13 @@ struct ThermalExpansion {
     // eps_i = alpha (theta_i - theta_ref) [-]; 0 when inactive.
     double strain(std::size_t i) const { return theta ? alpha * ((*theta)[i] - theta_ref) : 0.0; }
     // Throws std::invalid_argument naming what is wrong (a model calls it when attached).
-    void validate(std::size_t nodes) const
+    void validate(std::size_t nodes, bool plane_strain_2d = false) const
     {
+        if (theta && plane_strain_2d)
+            throw std::invalid_argument("thermal expansion: 2D plane strain is not written (its free strain is (1 + nu) alpha dtheta)");
         if (!std::isfinite(alpha)) throw std::invalid_argument("thermal expansion: alpha must be finite");
         if (!std::isfinite(theta_ref)) throw std::invalid_argument("thermal expansion: theta_ref must be finite");
-        if (theta && theta->size() != nodes)
+        if (theta && nodes > 0 && theta->size() != nodes)
             throw std::invalid_argument("thermal expansion: " + std::to_string(theta->size()) + " temperatures for " +
                                         std::to_string(nodes) + " nodes");
     }

@@ -200,7 +200,7 @@ Eigen::SparseMatrix<double> tangent_pmb(const PMB& model, const Body<D>& body, c
     for (std::size_t i = 0; i < n; ++i)
         for_intact_bonds(bonds, i, [&](std::int64_t k, int j) {
             Vec<D> Y = y[j] - y[i];
-            const double ylen = norm(Y), L = model.length[k];
+            const double ylen = norm(Y), L = model.length[k] * (1 + model.bond_thermal_strain(i, j));  // rest length
             const double w = body.volume[i] * model.coef[k];
             for (int e = 0; e < D; ++e) {
                 const int ri = dofs.index[i * D + e];
