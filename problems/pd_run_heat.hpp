@@ -3,7 +3,10 @@
 // with mechanics, the scene's heat component) with pd_run's guard and heat.csv.
 //   rho cv dT_i/dt = Q_i(T) on free nodes, T_i = T_fixed_i on held nodes (pd/heat/conduction.hpp),
 //   Q from Agwai's bond-based model or the correspondence heat model (pd/heat/agwai.hpp,
-//   correspondence_heat.hpp); no sources, no convection, no coupling to the mechanics (yet).
+//   correspondence_heat.hpp); no sources, no convection, no heat from the mechanics (yet).
+// Thermal expansion (--alpha, --T-ref): with mechanics, PMB and LPS (with SCF) take the strain
+// alpha (T - T_ref) of the run's temperatures (pd/models/thermal_expansion.hpp), and so does the
+// critical stretch of --s0; another model is refused (exit 2).
 // Integrators: explicit Euler, implicit Euler, CVODE BDF (one output per thermal step).
 // dt_thermal default = 0.5 x the Gershgorin thermal critical step (spec/000b eq. 3.20).
 // Heat guard: with no sources the exact temperatures stay in the range of the initial and held
@@ -15,6 +18,7 @@
 #include "pd/heat/agwai.hpp"
 #include "pd/heat/conduction.hpp"
 #include "pd/heat/correspondence_heat.hpp"
+#include "pd/models/thermal_expansion.hpp"
 #include "pd/time/heat_cvode.hpp"
 #include "pd/core/state_archive.hpp"
 #include "pd/io/csv.hpp"
@@ -42,6 +46,7 @@ struct HeatOptions {
     const std::string& integrator;
     const double& hourglass;
     const std::string& correction;
+    const double &alpha, &T_ref;
 };
 
 inline HeatOptions add_heat_options(pd::io::Options& opt, double automatic)
@@ -54,7 +59,9 @@ inline HeatOptions add_heat_options(pd::io::Options& opt, double automatic)
             opt.add_int("thermal-steps", 1000, "thermal steps of a --mechanics off run"),
             opt.add_string("thermal-integrator", "explicit", "heat integrator", {"explicit", "implicit", "cvode"}),
             opt.add("heat-hourglass", 0.0, "hourglass suppression coefficient of --heat correspondence"),
-            opt.add_string("thermal-correction", "none", "Agwai thermal correction factor", {"none", "per-node", "pair-mean"})};
+            opt.add_string("thermal-correction", "none", "Agwai thermal correction factor", {"none", "per-node", "pair-mean"}),
+            opt.add("alpha", 0.0, "linear thermal expansion coefficient (with --heat and mechanics; PMB, LPS, LPS+SCF)", "1/K"),
+            opt.add("T-ref", automatic, "stress-free temperature of --alpha (required with it)", "K")};
 }
 
 // Cross-checks of the heat options; `mechanics` = the mechanical run is on. fail() never returns.
@@ -63,7 +70,7 @@ void check_heat_options(const pd::io::Options& opt, const HeatOptions& h, bool m
 {
     const bool on = h.heat != "none";
     for (const char* name : {"k", "cv", "T0", "dt-thermal", "thermal-steps", "thermal-integrator", "heat-hourglass",
-                             "thermal-correction"})
+                             "thermal-correction", "alpha", "T-ref"})
         if (opt.given(name) && !on) fail(std::string("option --") + name + " needs --heat agwai|correspondence");
     if (!on) return;
     for (const char* name : {"k", "cv"})
@@ -73,6 +80,11 @@ void check_heat_options(const pd::io::Options& opt, const HeatOptions& h, bool m
     if (opt.given("heat-hourglass") && h.heat != "correspondence") fail("option --heat-hourglass applies to --heat correspondence only");
     if (opt.given("thermal-correction") && h.heat != "agwai") fail("option --thermal-correction applies to --heat agwai only");
     if (h.hourglass < 0) fail("option --heat-hourglass must be >= 0, got " + pd::io::format_double(h.hourglass));
+    if (opt.given("T-ref") && !opt.given("alpha")) fail("option --T-ref needs --alpha");
+    if (!opt.given("alpha")) return;
+    if (!mechanics) fail("option --alpha needs the mechanics (not --mechanics off)");
+    if (!opt.given("T-ref")) fail("option --T-ref is required with --alpha (the stress-free temperature)");
+    if (!std::isfinite(h.alpha) || !std::isfinite(h.T_ref)) fail("options --alpha and --T-ref must be finite");
 }
 
 struct HeatSettings {
@@ -81,6 +93,7 @@ struct HeatSettings {
     pd::ThermalCorrection correction = pd::ThermalCorrection::none;
     long every = 1;  // heat.csv row every k thermal steps
     bool resumed = false;  // restarted from a checkpoint: heat.csv is written by state(), not by init
+    double alpha = 0, T_ref = 0;  // thermal expansion [1/K] and its stress-free temperature [K]; alpha 0: none
 };
 
 // The run's temperature field (pd/heat/temperature_field.hpp: the model and integrator of the settings)
@@ -184,6 +197,18 @@ private:
         rows_.insert(rows_.end(), r.begin(), r.end());
     }
 };
+
+// Thermal expansion of the model from the run's temperatures (--alpha; none without heat or with
+// alpha 0); a model that has none is refused.
+template <class Model>
+void attach_thermal_expansion(Model& model, const HeatSettings& s, HeatRun* heat, const std::string& name, void (*fail)(const std::string&))
+{
+    if (!heat || s.alpha == 0) return;
+    if constexpr (requires { model.set_thermal_expansion(pd::ThermalExpansion{}); })
+        model.set_thermal_expansion({s.alpha, s.T_ref, &heat->T()});
+    else
+        fail(std::string("option --alpha applies to --model pmb, lps and lps-scf (thermal expansion of ").append(name).append(" is not written)"));
+}
 
 // The heat run of the settings on the given family (bonds must outlive it).
 template <int D>

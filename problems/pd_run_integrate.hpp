@@ -168,6 +168,7 @@ template <int D, class Model>
 int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& body, pd::Bonds& bonds, Model& model,
               HeatRun* heat)
 {
+    attach_thermal_expansion(model, cfg.heat, heat, cfg.model, fail);
     pd::Explicit<D, Model> sim(body, bonds, model, cfg.rho);
     pd::NodeSet held;  // fixed points with zero initial displacement; the others hold their own u0
     for (std::size_t i = 0; i < pc.size(); ++i) {
@@ -188,6 +189,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     pd::CriticalStretch damage;  // bond breaking, only with --s0
     damage.s0 = cfg.s0;
     if (pc.no_fail_count() > 0) damage.no_fail = pc.no_fail;
+    if constexpr (requires { model.thermal_expansion(); }) damage.thermal = model.thermal_expansion();
     if (cfg.s0 > 0) sim.scene.set_damage(damage);
     sim.scene.rate_pairing = {.end_of_step = cfg.conventions.end_of_step,
                               .initial_velocity_step = cfg.conventions.initial_velocity ? cfg.dt : 0.0};

@@ -1,0 +1,101 @@
+// tests/test_pd_run_thermal_expansion.cpp -- --alpha / --T-ref of build/bin/pd_run (thermal expansion of
+// PMB and LPS from the run's temperatures). References: a free LPS cube held at y = x with the uniform
+// temperature T_ref + dT starts with the strain energy of a fully constrained body, 9/2 K (alpha dT)^2
+// per unit volume at every point (closed form; spec/000a V7), keeps its total energy and expands;
+// T = T_ref gives the files of a run without --alpha byte for byte; the input contracts.
+#include "pd/io/csv.hpp"
+
+#include <gtest/gtest.h>
+
+#include "pd_run_harness.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+using pd::io::read_csv;
+using pd_test::lattice_csv;
+using pd_test::num;
+using pd_test::pd_run;
+using pd_test::Result;
+using pd_test::slurp;
+using pd_test::write_file;
+
+namespace {
+constexpr double dx = 1e-3, E = 200e9, nu = 0.25, alpha = 1.2e-5, T_ref = 20, dT = 50;  // K = E / (3 (1 - 2 nu))
+const std::string heat = " --heat agwai --k 50 --cv 500 --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3";
+
+std::string cube(double T0)
+{
+    const std::string t = num(T0);
+    return write_file(std::string("cube_").append(t).append(".csv"),
+                      lattice_csv(6, dx, ",T0", [&](int, int, int) { return std::string(",").append(t); }))
+        .string();
+}
+}  // namespace
+
+// The free expansion u_s = eps (x - c) is the static solution (no force at y = x + u_s), so from rest
+// each mode's amplitude follows q_s (1 - cos omega t): the projection P(t) = sum (x - c).u / (eps
+// sum |x - c|^2) (equal point masses) stays in [0, 2] and is > 0 once it moves. dt = 1e-8 s (about
+// 0.1 of the stable step) keeps Verlet's energy error below 1e-3 of W0.
+TEST(PdRunThermalExpansion, HeatedFreeLPSCubeStartsWithTheConstrainedEnergyAndExpands)
+{
+    const Result r = pd_run("te_lps", "--input " + cube(T_ref + dT) + heat + " --model lps --alpha " + num(alpha) + " --T-ref " +
+                                          num(T_ref) + " --dt 1e-8 --steps 300 --energy-every 10 --output-steps 100,200,300");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto energy = read_csv(r.dir / "energy.csv");
+    const double K = E / (3 * (1 - 2 * nu)), eps = alpha * dT, W0 = 4.5 * K * eps * eps * 216 * dx * dx * dx;
+    EXPECT_NEAR(energy.number(0, 3), W0, 1e-10 * W0);  // strain_J at step 0
+    EXPECT_EQ(energy.number(0, 2), 0.0);                // kinetic_J: at rest
+    for (std::size_t q = 1; q < energy.rows.size(); ++q) EXPECT_NEAR(energy.number(q, 5), W0, 1e-3 * W0) << "row " << q;  // total_J
+    const double c = 3 * dx;  // centre of the cube
+    for (const char* f : {"state_step0100.csv", "state_step0200.csv", "state_step0300.csv"}) {
+        const auto st = read_csv(r.dir / f);  // node_id, x, y, z, ux, uy, uz, ...
+        double proj = 0, norm2 = 0;
+        for (std::size_t i = 0; i < st.rows.size(); ++i)
+            for (int d = 0; d < 3; ++d) {
+                const double xc = st.number(i, 1 + d) - c;
+                proj += xc * st.number(i, 4 + d), norm2 += xc * xc;
+            }
+        const double P = proj / (eps * norm2);
+        EXPECT_GT(P, 0.01) << f;
+        EXPECT_LT(P, 2.0) << f;
+    }
+}
+
+// At T = T_ref the thermal strain is zero: every file equals that of the run without --alpha.
+TEST(PdRunThermalExpansion, ReferenceTemperatureChangesNothing)
+{
+    for (const char* model : {"pmb", "lps"}) {
+        const std::string in = "--input " + cube(T_ref) + heat + " --model " + model + " --steps 20 --output-steps 20 --s0 1e-3";
+        const Result a = pd_run(std::string("te_ref_a_") + model, in);
+        const Result b = pd_run(std::string("te_ref_b_") + model, in + " --alpha " + num(alpha) + " --T-ref " + num(T_ref));
+        ASSERT_EQ(a.status, 0) << a.err;
+        ASSERT_EQ(b.status, 0) << b.err;
+        for (const char* f : {"state_step0020.csv", "energy.csv", "heat.csv"})
+            EXPECT_EQ(slurp(a.dir / f), slurp(b.dir / f)) << model << " " << f;
+    }
+}
+
+TEST(PdRunThermalExpansion, BadInputsExitTwoWithOneLine)
+{
+    const std::string in = "--input " + cube(T_ref + dT) + " --steps 5";
+    const std::string steel = " --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3";
+    struct Case { std::string args, expect; };
+    const std::vector<Case> cases = {
+        {in + steel + " --alpha 1e-5 --T-ref 20", "--alpha needs --heat"},
+        {in + heat + " --alpha 1e-5", "--T-ref is required with --alpha"},
+        {in + heat + " --T-ref 20", "--T-ref needs --alpha"},
+        {"--input " + cube(T_ref) + " --heat agwai --k 50 --cv 500 --rho 7800 --delta 3e-3 --mechanics off --alpha 1e-5 --T-ref 20",
+         "--alpha needs the mechanics"},
+        {in + heat + " --model pals --alpha 1e-5 --T-ref 20", "--alpha applies to --model pmb, lps and lps-scf"},
+        {in + heat + " --model correspondence --alpha 1e-5 --T-ref 20", "--alpha applies to --model pmb, lps and lps-scf"},
+    };
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+        const Result r = pd_run("te_bad" + std::to_string(k), cases[k].args);
+        EXPECT_EQ(r.status, 2) << cases[k].args;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_NE(r.err.find(cases[k].expect), std::string::npos) << cases[k].args << "\n" << r.err;
+    }
+}
