@@ -122,7 +122,7 @@ private:
             for_intact_bonds(b, i, [&](std::int64_t k, int j) {
                 if (!no_fail.empty() && no_fail[j]) return;
                 const double L = b.length[k];
-                const double rest = thermal.active() ? L * (1 + 0.5 * (thermal.strain(i) + thermal.strain(j))) : L;
+                const double rest = thermal.active() ? L * (1 + thermal.pair_strain(i, j)) : L;
                 if ((norm(y[j] - y[i]) - rest) / L > s0_of(k)) { b.intact[k] = 0; ++broken; }
             });
         }

@@ -88,11 +88,7 @@ struct PMB {
     }
     const ThermalExpansion& thermal_expansion() const { return thermal; }
     // Free thermal strain of bond k (i -> j): (eps_i + eps_j)/2 [-].
-    double bond_thermal_strain(std::size_t i, int j) const
-    {
-        return thermal.active() ? 0.5 * thermal.alpha * (((*thermal.theta)[i] - thermal.theta_ref) + ((*thermal.theta)[j] - thermal.theta_ref))
-                                : 0.0;
-    }
+    double bond_thermal_strain(std::size_t i, int j) const { return thermal.pair_strain(i, static_cast<std::size_t>(j)); }
 
     // Bond kernel with thermal expansion (header): bond_scalar with |xi| (1 + eps_ij) for |xi| in e.
     struct ThermalKernel {

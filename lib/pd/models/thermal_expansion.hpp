@@ -36,6 +36,11 @@ struct ThermalExpansion {
     bool active() const { return theta != nullptr; }
     // eps_i = alpha (theta_i - theta_ref) [-]; 0 when inactive.
     double strain(std::size_t i) const { return theta ? alpha * ((*theta)[i] - theta_ref) : 0.0; }
+    // (eps_i + eps_j)/2, the mean of a pair's two ends (PMB's pair force, the critical stretch) [-].
+    double pair_strain(std::size_t i, std::size_t j) const
+    {
+        return theta ? 0.5 * alpha * (((*theta)[i] - theta_ref) + ((*theta)[j] - theta_ref)) : 0.0;
+    }
     // Throws std::invalid_argument naming what is wrong (a model calls it when attached).
     void validate(std::size_t nodes, bool plane_strain_2d = false) const
     {
