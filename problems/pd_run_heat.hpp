@@ -4,9 +4,10 @@
 //   rho cv dT_i/dt = Q_i(T) on free nodes, T_i = T_fixed_i on held nodes (pd/heat/conduction.hpp),
 //   Q from Agwai's bond-based model or the correspondence heat model (pd/heat/agwai.hpp,
 //   correspondence_heat.hpp); no sources, no convection, no heat from the mechanics (yet).
-// Thermal expansion (--alpha, --T-ref): with mechanics, PMB and LPS (with SCF) take the strain
-// alpha (T - T_ref) of the run's temperatures (pd/models/thermal_expansion.hpp), and so does the
-// critical stretch of --s0; another model is refused (exit 2).
+// Thermal expansion (--alpha, --T-ref): with mechanics, PMB, LPS (with SCF) and correspondence (linear
+// law: the thermal strain; flanagan-taylor: its increment in each update) take the strain
+// alpha (T - T_ref) of the run's temperatures (pd/models/thermal_expansion.hpp, correspondence.hpp), and
+// so does the critical stretch of --s0; PALS is refused (exit 2).
 // Integrators: explicit Euler, implicit Euler, CVODE BDF (one output per thermal step).
 // dt_thermal default = 0.5 x the Gershgorin thermal critical step (spec/000b eq. 3.20).
 // Heat guard: with no sources the exact temperatures stay in the range of the initial and held
@@ -60,7 +61,7 @@ inline HeatOptions add_heat_options(pd::io::Options& opt, double automatic)
             opt.add_string("thermal-integrator", "explicit", "heat integrator", {"explicit", "implicit", "cvode"}),
             opt.add("heat-hourglass", 0.0, "hourglass suppression coefficient of --heat correspondence"),
             opt.add_string("thermal-correction", "none", "Agwai thermal correction factor", {"none", "per-node", "pair-mean"}),
-            opt.add("alpha", 0.0, "linear thermal expansion coefficient (with --heat and mechanics; PMB, LPS, LPS+SCF)", "1/K"),
+            opt.add("alpha", 0.0, "linear thermal expansion coefficient (with --heat and mechanics; PMB, LPS, LPS+SCF, correspondence)", "1/K"),
             opt.add("T-ref", automatic, "stress-free temperature of --alpha (required with it)", "K")};
 }
 
@@ -207,7 +208,7 @@ void attach_thermal_expansion(Model& model, const HeatSettings& s, HeatRun* heat
     if constexpr (requires { model.set_thermal_expansion(pd::ThermalExpansion{}); })
         model.set_thermal_expansion({s.alpha, s.T_ref, &heat->T()});
     else
-        fail(std::string("option --alpha applies to --model pmb, lps and lps-scf (thermal expansion of ").append(name).append(" is not written)"));
+        fail(std::string("option --alpha applies to --model pmb, lps, lps-scf and correspondence (thermal expansion of ").append(name).append(" is not written)"));
 }
 
 // The heat run of the settings on the given family (bonds must outlive it).

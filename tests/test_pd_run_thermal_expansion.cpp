@@ -1,5 +1,5 @@
 // tests/test_pd_run_thermal_expansion.cpp -- --alpha / --T-ref of build/bin/pd_run (thermal expansion of
-// PMB and LPS from the run's temperatures). References: a free LPS cube held at y = x with the uniform
+// PMB, LPS and correspondence from the run's temperatures). References: a free cube held at y = x with the uniform
 // temperature T_ref + dT starts with the strain energy of a fully constrained body, 9/2 K (alpha dT)^2
 // per unit volume at every point (closed form; spec/000a V7), keeps its total energy and expands;
 // T = T_ref gives the files of a run without --alpha byte for byte; the input contracts.
@@ -38,36 +38,40 @@ std::string cube(double T0)
 // The free expansion u_s = eps (x - c) is the static solution (no force at y = x + u_s), so from rest
 // each mode's amplitude follows q_s (1 - cos omega t): the projection P(t) = sum (x - c).u / (eps
 // sum |x - c|^2) (equal point masses) stays in [0, 2] and is > 0 once it moves. dt = 1e-8 s (about
-// 0.1 of the stable step) keeps Verlet's energy error below 1e-3 of W0.
-TEST(PdRunThermalExpansion, HeatedFreeLPSCubeStartsWithTheConstrainedEnergyAndExpands)
+// 0.1 of the stable step) keeps Verlet's energy error below 1e-3 of W0. LPS, correspondence with the
+// linear law (the thermal strain) and with Flanagan-Taylor (its increment at the first update).
+TEST(PdRunThermalExpansion, HeatedFreeCubeStartsWithTheConstrainedEnergyAndExpands)
 {
-    const Result r = pd_run("te_lps", "--input " + cube(T_ref + dT) + heat + " --model lps --alpha " + num(alpha) + " --T-ref " +
-                                          num(T_ref) + " --dt 1e-8 --steps 300 --energy-every 10 --output-steps 100,200,300");
-    ASSERT_EQ(r.status, 0) << r.err;
-    const auto energy = read_csv(r.dir / "energy.csv");
-    const double K = E / (3 * (1 - 2 * nu)), eps = alpha * dT, W0 = 4.5 * K * eps * eps * 216 * dx * dx * dx;
-    EXPECT_NEAR(energy.number(0, 3), W0, 1e-10 * W0);  // strain_J at step 0
-    EXPECT_EQ(energy.number(0, 2), 0.0);                // kinetic_J: at rest
-    for (std::size_t q = 1; q < energy.rows.size(); ++q) EXPECT_NEAR(energy.number(q, 5), W0, 1e-3 * W0) << "row " << q;  // total_J
-    const double c = 3 * dx;  // centre of the cube
-    for (const char* f : {"state_step0100.csv", "state_step0200.csv", "state_step0300.csv"}) {
-        const auto st = read_csv(r.dir / f);  // node_id, x, y, z, ux, uy, uz, ...
-        double proj = 0, norm2 = 0;
-        for (std::size_t i = 0; i < st.rows.size(); ++i)
-            for (int d = 0; d < 3; ++d) {
-                const double xc = st.number(i, 1 + d) - c;
-                proj += xc * st.number(i, 4 + d), norm2 += xc * xc;
-            }
-        const double P = proj / (eps * norm2);
-        EXPECT_GT(P, 0.01) << f;
-        EXPECT_LT(P, 2.0) << f;
+    for (const std::string model : {"lps", "correspondence", "correspondence --stress-law flanagan-taylor"}) {
+        const Result r = pd_run("te_" + model.substr(0, 4) + std::to_string(model.size()),
+                                "--input " + cube(T_ref + dT) + heat + " --model " + model + " --alpha " + num(alpha) + " --T-ref " +
+                                    num(T_ref) + " --dt 1e-8 --steps 300 --energy-every 10 --output-steps 100,200,300");
+        ASSERT_EQ(r.status, 0) << r.err;
+        const auto energy = read_csv(r.dir / "energy.csv");
+        const double K = E / (3 * (1 - 2 * nu)), eps = alpha * dT, W0 = 4.5 * K * eps * eps * 216 * dx * dx * dx;
+        EXPECT_NEAR(energy.number(0, 3), W0, 1e-10 * W0) << model;  // strain_J at step 0
+        EXPECT_EQ(energy.number(0, 2), 0.0);                // kinetic_J: at rest
+        for (std::size_t q = 1; q < energy.rows.size(); ++q) EXPECT_NEAR(energy.number(q, 5), W0, 1e-3 * W0) << "row " << q;  // total_J
+        const double c = 3 * dx;  // centre of the cube
+        for (const char* f : {"state_step0100.csv", "state_step0200.csv", "state_step0300.csv"}) {
+            const auto st = read_csv(r.dir / f);  // node_id, x, y, z, ux, uy, uz, ...
+            double proj = 0, norm2 = 0;
+            for (std::size_t i = 0; i < st.rows.size(); ++i)
+                for (int d = 0; d < 3; ++d) {
+                    const double xc = st.number(i, 1 + d) - c;
+                    proj += xc * st.number(i, 4 + d), norm2 += xc * xc;
+                }
+            const double P = proj / (eps * norm2);
+            EXPECT_GT(P, 0.01) << f;
+            EXPECT_LT(P, 2.0) << f;
+        }
     }
 }
 
 // At T = T_ref the thermal strain is zero: every file equals that of the run without --alpha.
 TEST(PdRunThermalExpansion, ReferenceTemperatureChangesNothing)
 {
-    for (const char* model : {"pmb", "lps"}) {
+    for (const char* model : {"pmb", "lps", "correspondence"}) {
         const std::string in = "--input " + cube(T_ref) + heat + " --model " + model + " --steps 20 --output-steps 20 --s0 1e-3";
         const Result a = pd_run(std::string("te_ref_a_") + model, in);
         const Result b = pd_run(std::string("te_ref_b_") + model, in + " --alpha " + num(alpha) + " --T-ref " + num(T_ref));
@@ -82,6 +86,10 @@ TEST(PdRunThermalExpansion, BadInputsExitTwoWithOneLine)
 {
     const std::string in = "--input " + cube(T_ref + dT) + " --steps 5";
     const std::string steel = " --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3";
+    std::string flat = "x,y,z,volume,T0\n";  // a 6 x 6 plate for --dim 2
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i) flat += num((i + 0.5) * dx) + "," + num((j + 0.5) * dx) + ",0," + num(dx * dx) + ",70\n";
+    const std::filesystem::path plate = write_file("plate_70.csv", flat);
     struct Case { std::string args, expect; };
     const std::vector<Case> cases = {
         {in + steel + " --alpha 1e-5 --T-ref 20", "--alpha needs --heat"},
@@ -89,8 +97,9 @@ TEST(PdRunThermalExpansion, BadInputsExitTwoWithOneLine)
         {in + heat + " --T-ref 20", "--T-ref needs --alpha"},
         {"--input " + cube(T_ref) + " --heat agwai --k 50 --cv 500 --rho 7800 --delta 3e-3 --mechanics off --alpha 1e-5 --T-ref 20",
          "--alpha needs the mechanics"},
-        {in + heat + " --model pals --alpha 1e-5 --T-ref 20", "--alpha applies to --model pmb, lps and lps-scf"},
-        {in + heat + " --model correspondence --alpha 1e-5 --T-ref 20", "--alpha applies to --model pmb, lps and lps-scf"},
+        {in + heat + " --model pals --alpha 1e-5 --T-ref 20", "--alpha applies to --model pmb, lps, lps-scf and correspondence"},
+        {"--input " + plate.string() + " --steps 5" + heat + " --dim 2 --plane strain --model correspondence --alpha 1e-5 --T-ref 20",
+         "plane strain"},
     };
     for (std::size_t k = 0; k < cases.size(); ++k) {
         const Result r = pd_run("te_bad" + std::to_string(k), cases[k].args);

@@ -3,7 +3,9 @@
 // spec/000a sec. 2.7). From F and Fdot at the point:
 //   L = Fdot F^-1, D = sym L, W = skew L;  omega = w + (tr(V) I - V)^-1 z,  z_i = eps_ijk (V D)_jk
 //   R <- exp(dt Omega) R (Rodrigues),  V <- V + dt (L V - V Omega)
-//   d = R^T D R,  sigma_hat <- sigma_hat + dt (K tr(d) I + 2 G dev(d)),  sigma = R sigma_hat R^T.
+//   d = R^T D R,  sigma_hat <- sigma_hat + dt (K tr(d) I + 2 G dev(d)) - 3 K d_eps_th I,  sigma = R sigma_hat R^T.
+// d_eps_th = alpha (theta^(n+1) - theta^n) is the free thermal strain increment of the step (spec/000a
+// eq. 2.81: D : (d dt - alpha dtheta I), isotropic alpha; 0 without thermal expansion).
 // R, V and the unrotated stress sigma_hat are the point's state; returns sigma [Pa].
 // RotationIncrement::peridigm: Q = I + sin(dt |om|)/|om| Om - (1 - cos(dt |om|))/|om|^2 Om^2, the sign
 // of Peridigm's code (reference/peridigm_cloud/README.md); Q is then not exactly orthogonal
@@ -18,7 +20,7 @@ namespace pd::laws {
 enum class RotationIncrement { rodrigues, peridigm };
 
 inline Mat3 flanagan_taylor_step(const Mat3& F, const Mat3& Fdot, Mat3& R, Mat3& V, Mat3& sigma_hat, double K, double G, double dt,
-                                 RotationIncrement rotation = RotationIncrement::rodrigues)
+                                 RotationIncrement rotation = RotationIncrement::rodrigues, double d_eps_th = 0)
 {
     using Col = Eigen::Vector3d;
     const Mat3 L = Fdot * F.inverse();                    // step 2
@@ -41,6 +43,7 @@ inline Mat3 flanagan_taylor_step(const Mat3& F, const Mat3& Fdot, Mat3& R, Mat3&
     const Mat3 d = R.transpose() * Dr * R;                // step 8
     const double tr = d.trace();                          // erratum 2: K tr(d)
     sigma_hat += dt * (K * tr * Mat3::Identity() + 2 * G * (d - tr / 3 * Mat3::Identity()));
+    if (d_eps_th != 0) sigma_hat.diagonal().array() -= 3 * K * d_eps_th;  // eq. 2.81
     return R * sigma_hat * R.transpose();                 // erratum 3
 }
 

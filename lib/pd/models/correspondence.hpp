@@ -20,6 +20,17 @@
 //   No omega factor (as Peridigm). C_hg = 0 (default) switches it off; the source uses 0.02.
 //   HourglassDirection::bond (Peridigm's form): along Y instead of M, i.e. times |Y| (the force then
 //   carries an extra length in the input's unit).
+// Thermal expansion (models/thermal_expansion.hpp, set_thermal_expansion; spec/000a sec. 2.11, V7), with
+// eps_i = alpha (theta_i - theta_ref) of node i:
+//   Law::linear           sigma = lambda tr(eps - eps_i I) I + 2 G (eps - eps_i I) = sigma(eps) - (D lambda + 2 G) eps_i I
+//                         (3D: 3 K eps_i; 2D plane stress: E/(1 - nu) eps_i; 2D plane strain is refused);
+//   Law::flanagan_taylor  the strain increment of each update_stress less alpha (theta^(n+1) - theta^n) I (eq. 2.81),
+//                         theta^n the temperature of node i at the previous update (theta_ref before the first:
+//                         a body that starts at theta != theta_ref and y = x is then under the same -3 K eps_i as
+//                         the linear law; the rate form knows no other reference). theta^n is rate state.
+//   Law::saint_venant_kirchhoff refuses it.
+// The free body y = (1 + eps) x carries no stress in the linear law; in the rate form sum d dt = ln(1 + eps),
+// so sigma_hat is 3 K (ln(1 + eps) - eps) = O(K eps^2) there.
 // A node whose K is singular (fewer than D independent intact bonds; the rule of models/shape_tensor.hpp)
 // gets K^-1 = 0 and F = I: no stress force.
 // Usage: internal_force(model, bonds, y, f) (bond_loop.hpp) runs point_pass (K on damage, F, P) and the
@@ -47,6 +58,7 @@
 #include "pd/models/correspondence_simd.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/models/shape_tensor.hpp"
+#include "pd/models/thermal_expansion.hpp"
 #include "pd/core/parallel.hpp"
 #include "pd/core/state_archive.hpp"
 #include "pd/simd/translated_families.hpp"
@@ -111,6 +123,7 @@ struct Correspondence {
     mutable std::vector<Mat> PKinv;   // P_i K_i^-1 [Pa/m^5 in 3D]
     mutable bool matrices_partial = false;  // chunk nodes' F, sigma, P, PKinv not written (node_matrices = false)
     std::vector<Mat> sigma_hat, R, V; // Flanagan-Taylor: unrotated stress [Pa], rotation, left stretch [-]
+    std::vector<double> theta_n;      // Flanagan-Taylor with thermal expansion: theta^n of each node (header) [K]
     // P K^-1 [Pa/m^5] and F [-] per node for the bond kernel (3D, correspondence_simd.hpp: 24 doubles
     // per node, 64-byte aligned). The chunk path writes them only where the per-node kernels of that
     // pass read them (block_read); a bond pass that reads all completes them first (with_kernel).
@@ -174,6 +187,22 @@ struct Correspondence {
         if (!soa.empty()) detail::chunk_node_data(runs, b, Kinv, kinv_soa, regular, block_read);
 #endif
     }
+
+    // Thermal expansion (header); ThermalExpansion{} switches it off. Throws std::invalid_argument for
+    // Law::saint_venant_kirchhoff, 2D plane strain, or a temperature vector of another length.
+    void set_thermal_expansion(const ThermalExpansion& t)
+    {
+        t.validate(F.size(), D == 2 && par.plane == Plane::strain);
+        if (t.active() && par.law == Law::saint_venant_kirchhoff)
+            throw std::invalid_argument("Correspondence: thermal expansion is not written for Law::saint_venant_kirchhoff");
+        thermal = t;
+        theta_n.clear();
+        if (t.active() && par.law == Law::flanagan_taylor) theta_n.assign(F.size(), t.theta_ref);
+    }
+    const ThermalExpansion& thermal_expansion() const { return thermal; }
+    // (D lambda + 2 G) eps_i: the stress of the linear law held at the free thermal strain of node i [Pa]
+    // (the chunk kernels' operations, detail::ChunkThermal).
+    double thermal_pressure(std::size_t i) const { return (D * lambda + 2 * par.material.G) * (thermal.alpha * ((*thermal.theta)[i] - thermal.theta_ref)); }
 
     Col xi(std::size_t i, int j) const
     {
@@ -321,7 +350,8 @@ struct Correspondence {
         static std::mutex m;
         const std::lock_guard<std::mutex> lock(m);
         if (!partial.load(std::memory_order_relaxed)) return;
-        if constexpr (D == 3) detail::sync_chunk_matrices(runs, regular, block_read, soa.data(), soa_n, lambda, par.material.G, F, PKinv, sigma, P);
+        if constexpr (D == 3)
+            detail::sync_chunk_matrices(runs, regular, block_read, soa.data(), soa_n, lambda, par.material.G, chunk_thermal(), F, PKinv, sigma, P);
         partial.store(false, std::memory_order_release);
 #endif
     }
@@ -341,14 +371,15 @@ struct Correspondence {
 
     // Energy density W_i [J/m^3]; call after point_pass. Law::saint_venant_kirchhoff: the exact
     // W = lambda tr(E)^2/2 + G E:E. Otherwise the bookkeeping value 1/2 sigma : eps, eps = sym(F) - I
-    // (exact for Law::linear). Hourglass energy not included.
+    // less the free thermal strain eps_i I (exact for Law::linear). Hourglass energy not included.
     template <int Dy>
     std::vector<double> energy_density(const Bonds& b, const Field<Dy>&) const
     {
         sync_node_matrices();
         std::vector<double> W(b.nodes(), 0.0);
         for (std::size_t i = 0; i < b.nodes(); ++i) {
-            const Mat eps = par.law == Law::saint_venant_kirchhoff ? laws::green_lagrange(F[i]) : laws::small_strain(F[i]);
+            Mat eps = par.law == Law::saint_venant_kirchhoff ? laws::green_lagrange(F[i]) : laws::small_strain(F[i]);
+            eps.diagonal().array() -= thermal.strain(i);  // the mechanical strain (0 without thermal expansion)
             const Mat stress = par.law == Law::saint_venant_kirchhoff ? svk_stress(F[i]) : sigma[i];
             W[i] = 0.5 * (stress.array() * eps.array()).sum();
         }
@@ -365,17 +396,21 @@ struct Correspondence {
         std::fill(sigma.begin(), sigma.end(), Mat::Zero());
         std::fill(R.begin(), R.end(), Mat::Identity());
         std::fill(V.begin(), V.end(), Mat::Identity());
+        std::fill(theta_n.begin(), theta_n.end(), thermal.theta_ref);
     }
     // The rate form's history for a checkpoint (core/state_archive.hpp): sigma_hat, R, V and the
-    // sigma of the last update; a point pass at the restored positions then rebuilds F and P.
+    // sigma of the last update (and theta^n with thermal expansion); a point pass at the restored
+    // positions then rebuilds F and P.
     void rate_state(StateArchive& ar)
     {
         ar.blocks("correspondence.sigma_hat", sigma_hat), ar.blocks("correspondence.R", R), ar.blocks("correspondence.V", V);
         ar.blocks("correspondence.sigma", sigma);
+        if (!theta_n.empty()) ar("correspondence.theta_n", theta_n);
     }
 
     // Flanagan-Taylor update (3D): from F at y and Fdot at v, advance R, V, sigma_hat by dt [s]
-    // and set sigma = R sigma_hat R^T (laws/flanagan_taylor.hpp; 000b sec. 1.5 [CODE] steps 1-8).
+    // and set sigma = R sigma_hat R^T (laws/flanagan_taylor.hpp; 000b sec. 1.5 [CODE] steps 1-8), with
+    // the thermal strain increment alpha (theta - theta^n) of the temperatures now (header).
     template <int Dy>
     void update_stress(const Bonds& b, const Field<Dy>& y, const Field<Dy>& v, double dt)
     {
@@ -392,14 +427,29 @@ struct Correspondence {
             } else {
                 family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
             }
+            double d_eps_th = 0;
+            if (!theta_n.empty()) {  // thermal expansion: theta^n -> theta^(n+1), also where K is singular
+                const double th = (*thermal.theta)[i];
+                d_eps_th = thermal.alpha * (th - theta_n[i]);
+                theta_n[i] = th;
+            }
             if (Kinv[i].isZero(0)) return;
             F[i] = N[0] * Kinv[i];
             sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], K, G, dt,  // step 1: Fdot = N[1] K^-1
-                                                  par.rotation);
+                                                  par.rotation, d_eps_th);
         });
     }
 
 private:
+    ThermalExpansion thermal;  // header; inactive by default (set_thermal_expansion)
+#ifdef PD_CHUNK_WIDTH
+    detail::ChunkThermal chunk_thermal() const
+    {
+        if (!thermal.active()) return {};
+        return {thermal.theta->data(), D * lambda + 2 * par.material.G, thermal.alpha, thermal.theta_ref};
+    }
+#endif
+
     template <bool Damaged, int Dy>
     void stress_pass(const Bonds& b, const Field<Dy>& y)
     {
@@ -456,7 +506,7 @@ private:
         double Fl[DD][detail::chunk_width], S[DD][detail::chunk_width], A[DD][detail::chunk_width];
         const double* mxi[3] = {m_xi.c[0].data(), m_xi.c[1].data(), m_xi.c[2].data()};
         double* fo[3] = {f_own.c[0].data(), f_own.c[1].data(), f_own.c[2].data()};
-        detail::chunk_linear_stress(i0, N, kinv_soa.data(), soa_n, mxi, lambda, par.material.G, Fl, S, A, soa.data(), fo);
+        detail::chunk_linear_stress(i0, N, kinv_soa.data(), soa_n, mxi, lambda, par.material.G, chunk_thermal(), Fl, S, A, soa.data(), fo);
         for (int l = 0; l < detail::chunk_width; ++l) {
             const std::size_t i = static_cast<std::size_t>(i0 + l);
             if (!par.node_matrices && !block_read[i]) continue;  // sync_node_matrices
@@ -483,6 +533,7 @@ private:
         F[i] = N * Kinv[i];
         if (par.law == Law::linear) {
             sigma[i] = linear_stress(F[i]);
+            if (thermal.active()) sigma[i].diagonal().array() -= thermal_pressure(i);
             P[i] = sigma[i];
         } else if (par.law == Law::saint_venant_kirchhoff) {
             P[i] = F[i] * svk_stress(F[i]);                                   // P = F S

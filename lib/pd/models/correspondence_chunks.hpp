@@ -148,12 +148,19 @@ inline void run_forces(const TemplateBond* tb, std::int64_t s, const int* start,
     }
 }
 
+// Thermal expansion of the linear law (Correspondence's header): sigma less p_i I with
+// p_i = coef (alpha (theta_i - theta_ref)) [Pa], coef = D lambda + 2 G; theta null: none.
+struct ChunkThermal {
+    const double* theta = nullptr;  // node temperatures [K]
+    double coef = 0, alpha = 0, theta_ref = 0;  // [Pa], [1/K], [K]
+};
+
 // F, P K^-1, sigma and P = sigma per node from the chunk arrays, for the lanes of the regular chunks
 // that the chunked pass did not copy (Correspondence::sync_node_matrices).
 template <class Mat>
 void sync_chunk_matrices(const TranslatedRuns& runs, const std::vector<std::uint8_t>& regular, const std::vector<std::uint8_t>& copied,
-                         const double* soa, std::size_t n, double lambda, double G, std::vector<Mat>& F, std::vector<Mat>& A,
-                         std::vector<Mat>& sigma, std::vector<Mat>& P)
+                         const double* soa, std::size_t n, double lambda, double G, const ChunkThermal& th, std::vector<Mat>& F,
+                         std::vector<Mat>& A, std::vector<Mat>& sigma, std::vector<Mat>& P)
 {
     parallel_for_items(runs.chunk_start.size(), runs.nodes, [&](std::size_t q) {
         for (int l = 0; regular[q] && l < chunk_width; ++l) {
@@ -164,17 +171,18 @@ void sync_chunk_matrices(const TranslatedRuns& runs, const std::vector<std::uint
                 A[i](e % 3, e / 3) = soa[e * n + i];
             }
             laws::small_strain_stress(F[i].data(), lambda, G, sigma[i].data());  // the chunk's operations
+            if (th.theta) sigma[i].diagonal().array() -= th.coef * (th.alpha * (th.theta[i] - th.theta_ref));
             P[i] = sigma[i];
         }
     });
 }
 
 // Law::linear for the W lanes of a chunk, from the deformation sums N[9][W] (column-major entries):
-//   F = N K^-1,  sigma = laws::small_strain_stress(F),  A = sigma K^-1,  f_own = A m_xi,
+//   F = N K^-1,  sigma = laws::small_strain_stress(F) - p I (ChunkThermal),  A = sigma K^-1,  f_own = A m_xi,
 // with K^-1 and m_xi of the lanes from structure-of-arrays copies (entry e of node i at kinv[e n + i],
 // m_xi.c[c][i]). Out: F, sigma and A as [9][W], A and F into soa, f_own into its field arrays.
 inline void chunk_linear_stress(int i0, const double (*N)[PD_CHUNK_WIDTH], const double* kinv, std::size_t n,
-                                const double* const mxi[3], double lambda, double G, double (*F)[PD_CHUNK_WIDTH],
+                                const double* const mxi[3], double lambda, double G, const ChunkThermal& th, double (*F)[PD_CHUNK_WIDTH],
                                 double (*S)[PD_CHUNK_WIDTH], double (*A)[PD_CHUNK_WIDTH], double* soa, double* const f_own[3])
 {
     vchunk Ki[9], Nv[9], Fv[9], Sv[9];
@@ -185,6 +193,10 @@ inline void chunk_linear_stress(int i0, const double (*N)[PD_CHUNK_WIDTH], const
     for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) Fv[a + 3 * c] = Nv[a] * Ki[3 * c] + Nv[a + 3] * Ki[1 + 3 * c] + Nv[a + 6] * Ki[2 + 3 * c];
     laws::small_strain_stress(Fv, lambda, G, Sv);
+    if (th.theta) {
+        const vchunk p = th.coef * (th.alpha * (load_chunk(th.theta + i0) - th.theta_ref));
+        Sv[0] -= p, Sv[4] -= p, Sv[8] -= p;
+    }
     vchunk fo[3] = {};
     for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) {

@@ -10,6 +10,8 @@
 // point_pass runs the model's point pass twice: once for F, once for P after the return. At
 // small strain P = sigma (1 + O(eps)). Not objective under large rotations (small-strain form;
 // the source's Flanagan-Taylor variant would be, sec. 2.7); the T6 bar has no rotation.
+// Thermal expansion (set_thermal_expansion, models/thermal_expansion.hpp): eps less the free thermal
+// strain eps_i I of node i, the total-form equivalent of spec/000a eq. 2.81.
 // Hourglass control (C_hg) acts as in the elastic model. History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
@@ -21,6 +23,7 @@
 #include "pd/models/plastic_points.hpp"
 #include "pd/core/parallel.hpp"
 #include "pd/models/stiffness_bound.hpp"
+#include "pd/models/thermal_expansion.hpp"
 
 #include <stdexcept>
 #include <vector>
@@ -43,6 +46,15 @@ struct PlasticCorrespondence {
     {
     }
 
+    // Thermal expansion (header); ThermalExpansion{} switches it off. Throws std::invalid_argument for a
+    // temperature vector of another length.
+    void set_thermal_expansion(const ThermalExpansion& t)
+    {
+        t.validate(hist.size());
+        thermal = t;
+    }
+    const ThermalExpansion& thermal_expansion() const { return thermal; }
+
     void commit()
     {
         hist_c = hist;
@@ -60,7 +72,7 @@ struct PlasticCorrespondence {
     {
         model.point_pass(b, y);  // F at y
         parallel_for(b.nodes(), [&](std::size_t i) {
-            const laws::Mat3 eps = 0.5 * (model.F[i] + model.F[i].transpose()) - laws::Mat3::Identity();
+            const laws::Mat3 eps = mechanical_strain(i);
             if (pts.is_plastic(i)) {
                 const laws::J2Update u = laws::j2_strain_update(el, pts.law, eps, hist_c[i], pts.dt, pts.theta(i));
                 model.sigma[i] = u.stress;
@@ -82,7 +94,7 @@ struct PlasticCorrespondence {
     {
         std::vector<double> W(b.nodes(), 0.0);
         for (std::size_t i = 0; i < b.nodes(); ++i) {
-            const laws::Mat3 eps = 0.5 * (model.F[i] + model.F[i].transpose()) - laws::Mat3::Identity() - hist[i].eps_p;
+            const laws::Mat3 eps = mechanical_strain(i) - hist[i].eps_p;
             W[i] = 0.5 * (model.sigma[i].array() * eps.array()).sum();
         }
         return W;
@@ -93,6 +105,16 @@ struct PlasticCorrespondence {
     Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }
 
 private:
+    ThermalExpansion thermal;  // header; inactive by default
+
+    // sym(F_i) - I - eps_i I [-].
+    laws::Mat3 mechanical_strain(std::size_t i) const
+    {
+        laws::Mat3 eps = 0.5 * (model.F[i] + model.F[i].transpose()) - laws::Mat3::Identity();
+        if (thermal.active()) eps.diagonal().array() -= thermal.strain(i);
+        return eps;
+    }
+
     static C3::Params with_given_stress(C3::Params p)
     {
         p.law = C3::Law::flanagan_taylor;

@@ -72,6 +72,8 @@ public:
     // Trial state at y (steps 1-5 of the header).
     void point_pass(const Bonds& b, const Field<3>& y)
     {
+        if (model.thermal_expansion().active())  // its trial steps would take the temperature increment once only
+            throw std::invalid_argument("ViscoelasticCorrespondence: thermal expansion is not written for this model");
         step_.advance(b, y);  // step 1
         const laws::MaxwellCoefficients c = laws::maxwell_coefficients(dt, tau_b);
         const double k_b = 2 * model.par.material.G * gamma_b;  // branch modulus 2 G_b [Pa]
