@@ -49,6 +49,9 @@ struct HeatLoads {
     double T_inf = 0;                  // ambient temperature of the convection [K or C]
     std::vector<int> fixed;            // nodes held at a temperature
     std::vector<double> fixed_value;   // their temperatures [K or C]
+    // Optional: the temperature of held node fixed[f] at time t [s] (replaces fixed_value; explicit and
+    // implicit Euler take it at the end of each step, Conduction::time; CVODE refuses it).
+    std::function<double(std::size_t f, double t)> fixed_at;
 };
 
 // Adds a surface flux q [W/m^2] (positive into the body) on a boundary layer of the given depth [m].
@@ -120,15 +123,17 @@ public:
     Model& model() { return model_; }
     const Bonds& bonds() const { return bonds_; }
 
+    double time = 0;  // [s] the time at which apply_fixed takes fixed_at (ConductingField: end of the step)
     double picard_tol = 1e-10;    // relative change that ends the Picard iteration [-] (nonlinear models)
     int picard_max_iter = 100;    // Picard iterations before giving up
     int picard_iterations = 0;    // iterations of the last implicit step or steady solve
     long picard_total = 0;        // iterations of all implicit steps and steady solves so far
 
-    // Sets the held temperatures.
+    // Sets the held temperatures (at `time` when HeatLoads::fixed_at is given).
     void apply_fixed(std::vector<double>& theta) const
     {
-        for (std::size_t f = 0; f < loads_.fixed.size(); ++f) theta[loads_.fixed[f]] = loads_.fixed_value[f];
+        for (std::size_t f = 0; f < loads_.fixed.size(); ++f)
+            theta[loads_.fixed[f]] = loads_.fixed_at ? loads_.fixed_at(f, time) : loads_.fixed_value[f];
     }
 
     // Net heating power density of every node [W/m^3] (0 on held nodes) and the heat flow Q into each.
@@ -365,6 +370,7 @@ public:
 protected:
     void take_step() override
     {
+        conduction_.time = t() + dt;  // the held temperatures of the step's end
         if (integrator_ == HeatIntegrator::explicit_euler) conduction_.explicit_euler(theta, dt);
         else if (integrator_ == HeatIntegrator::implicit_euler) conduction_.implicit_euler(theta, dt);
         else throw std::logic_error("ConductingField: CVODE is time/heat_cvode.hpp's CvodeField");

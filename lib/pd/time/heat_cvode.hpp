@@ -15,6 +15,7 @@
 #include "pd/time/cvode_bdf.hpp"
 
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace pd {
@@ -26,6 +27,7 @@ public:
               const CvodeOptions& opt = {})
         : heat_(heat), A_(heat_operator(model, bonds))
     {
+        if (heat.loads().fixed_at) throw std::invalid_argument("CVODE heat: time-dependent held temperatures (fixed_at) are not written");
         heat_.apply_fixed(theta0);
         theta_.resize(theta0.size());
         cvode_ = std::make_unique<CvodeBdf>(
@@ -75,6 +77,8 @@ public:
         : ConductingField<Model>(std::move(model), bonds, std::move(rho_c), std::move(loads), std::move(theta0), HeatIntegrator::cvode, dt_thermal),
           opt_(opt)
     {
+        if (this->conduction().loads().fixed_at)
+            throw std::invalid_argument("CVODE heat: time-dependent held temperatures (fixed_at) are not written");
     }
     const HeatCvode<Model>* solver() const { return cvode_.get(); }  // null before the first step
 
