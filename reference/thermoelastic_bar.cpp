@@ -187,7 +187,7 @@ ThermoelasticHistory thermoelastic_bar_cvode(const ThermoelasticBar& bar, const 
     for (int i = 0; i < semi.n; ++i)
         a[3 * i] = rtol * scale_u, a[3 * i + 1] = rtol * scale_u * c / bar.L, a[3 * i + 2] = rtol * std::abs(bar.dT);
     void* mem = CVodeCreate(CV_BDF, s.ctx);
-    SUNMatrix A = SUNBandMatrix(3 * semi.n, 4, 4, s.ctx);  // bandwidths of the interleaved layout: 4 up, 3 down
+    SUNMatrix A = SUNBandMatrix(3 * semi.n, 4, 4, s.ctx);  // bandwidths of the interleaved layout: 4 up, 4 down
     SUNLinearSolver LS = SUNLinSol_Band(s.y, A, s.ctx);
     ThermoelasticHistory out;
     auto release = [&] { CVodeFree(&mem), SUNLinSolFree(LS), SUNMatDestroy(A), N_VDestroy(atol); };
