@@ -84,4 +84,12 @@ concept HistoryModel = requires(M& m, const Bonds& b, const Field<D>& y) {
     m.commit();
 };
 
+// A model that turns mechanical work into heat (plastic: beta_TQ sigma_y dlambda; viscoelastic: the
+// energy its Maxwell branches dissipate): step_heat(i), the heat released at node i by the step just
+// committed [J/m^3]. A scene with a heat component accumulates it (scene.hpp, spec/000a eq. 3.24).
+template <class M>
+concept DissipativeModel = requires(const M& m, std::size_t i) {
+    { m.step_heat(i) } -> std::convertible_to<double>;
+};
+
 }  // namespace pd

@@ -8,6 +8,10 @@
 //                      set_heat(field): before the force evaluation of mechanical step n the integrator
 //                      calls advance_heat(n, dt), which takes the thermal steps due by then (the order of
 //                      spec/000a sec. 3.3.5: theta^(n+1) first, so that a coupled force sees it).
+//                      With a DissipativeModel (kernel_concepts.hpp) the heat of each committed step is
+//                      accumulated per node, e_abs += step_heat (eq. 3.24), and released into the field
+//                      every N_sync(MH) mechanical steps after the thermal steps, theta += e_abs/(rho c),
+//                      e_abs = 0 (eqs. 3.22-3.23 with erratum E11): set_heat(field, nsync_mh).
 // The model's optional roles (kernel_concepts.hpp) are served here, so that an integrator asks the
 // scene for forces and commits and knows no model or rule by name:
 //   internal_forces(u_old, u, dt, f)  one force evaluation at y = x + u after a step dt [s] from u_old:
@@ -26,7 +30,8 @@
 //   rate_pairing.end_of_step  the rate-form update pairs v with the end-of-step configuration x + u
 //     (Peridigm) instead of the mid-step one; then L = Fdot F^-1 is not skew for a rigid rotation.
 //   commit()  the trial history becomes the committed one (HistoryModel).
-//   advance_heat(n, dt)  the heat component's thermal steps due after n mechanical steps of dt (none: no-op).
+//   advance_heat(n, dt)  the heat component's thermal steps due after n mechanical steps of dt, then
+//     the release of the dissipated heat when n is a multiple of N_sync(MH) (none: no-op).
 // DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
 // BondWork* bond_work(const Bonds&) (null: none); template <class Model> void record(const Model&,
 // const Bonds&, const Field<D>& y); optionally state(StateArchive&), its part of a checkpoint.
@@ -91,12 +96,26 @@ public:
 
     bool has_damage_rule() const { return static_cast<bool>(break_bonds_); }
 
-    // Attaches the heat component (kept by reference; header).
-    void set_heat(TemperatureField& field) { heat_ = &field; }
+    // Attaches the heat component (kept by reference) with N_sync(MH) >= 1 (header).
+    void set_heat(TemperatureField& field, long nsync_mh = 1)
+    {
+        if (nsync_mh < 1) throw std::invalid_argument("Scene: N_sync(MH) must be >= 1");
+        if (field.theta.size() != body.size()) throw std::invalid_argument("Scene: the temperature field is not of this body");
+        heat_ = &field, nsync_mh_ = nsync_mh;
+        if constexpr (DissipativeModel<Model>) e_abs_.assign(body.size(), 0.0);
+    }
     void advance_heat(long n, double dt)
     {
-        if (heat_) heat_->follow(n, dt);
+        if (!heat_) return;
+        heat_->follow(n, dt);
+        if constexpr (DissipativeModel<Model>)
+            if (n % nsync_mh_ == 0) {
+                heat_->deposit(e_abs_);
+                std::fill(e_abs_.begin(), e_abs_.end(), 0.0);
+            }
     }
+    // Heat accumulated since the last release [J/m^3] (empty without a heat component or dissipation).
+    const std::vector<double>& accumulated_heat() const { return e_abs_; }
 
     // One force evaluation (header); returns the bonds broken before it.
     long internal_forces(const Field<D>& u_old, const Field<D>& u, double dt, Field<D>& f)
@@ -116,6 +135,8 @@ public:
     void commit()
     {
         if constexpr (HistoryModel<Model, D>) model.commit();
+        if constexpr (DissipativeModel<Model>)
+            for (std::size_t i = 0; i < e_abs_.size(); ++i) e_abs_[i] += model.step_heat(i);  // eq. 3.24
     }
 
     const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
@@ -134,6 +155,7 @@ public:
         ar("scene.v_step", v_step_);
         if (rule_state_) rule_state_(ar);
         if (heat_) heat_->state(ar);
+        if (!e_abs_.empty()) ar("heat.e_abs", e_abs_);
         if constexpr (BondDependentModel<Model>)
             if (!ar.saving() && std::find(bonds.intact.begin(), bonds.intact.end(), std::uint8_t{0}) != bonds.intact.end())
                 model.recompute(bonds);
@@ -184,6 +206,8 @@ private:
     std::function<void(const Field<D>&)> record_;
     std::function<void(StateArchive&)> rule_state_;
     TemperatureField* heat_ = nullptr;
+    long nsync_mh_ = 1;          // N_sync(MH)
+    std::vector<double> e_abs_;  // dissipated heat not yet released [J/m^3] (DissipativeModel with heat)
 
     void advance_rate_form(const Field<D>& u_old, const Field<D>& u, double dt)
     {

@@ -366,6 +366,13 @@ public:
         pd::heat_flow(model_, bonds_, theta, Q_);
         return Q_;
     }
+    // theta_i += e_i / (rho c_i(theta_i)) on the free nodes (temperature_field.hpp).
+    void deposit(const std::vector<double>& e) override
+    {
+        if (e.size() != theta.size()) throw std::invalid_argument("deposit: one energy density per node");
+        for (std::size_t i = 0; i < theta.size(); ++i)
+            if (!conduction_.held(i)) theta[i] += e[i] / conduction_.rho_c(i, theta[i]);
+    }
 
 protected:
     void take_step() override

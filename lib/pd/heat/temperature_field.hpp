@@ -8,6 +8,8 @@
 //                       N_sync mechanical steps (dt = N_sync dt_m, spec/000a sec. 3.3.4) is thus taken
 //                       every N_sync steps; any other ratio follows the clock as closely as it can;
 //     heat_flow()       Q at the current theta [W/m^3];
+//     deposit(e)        theta_i += e_i / (rho c_i) on the free nodes: heat released at once, e [J/m^3]
+//                       (the dissipated heat of a scene, spec/000a eq. 3.23 with erratum E11);
 //     state(ar)         theta and the step count (core/state_archive.hpp).
 // The field of a heat model under explicit or implicit Euler is conduction.hpp's ConductingField; under
 // CVODE BDF time/heat_cvode.hpp's CvodeField (make_temperature_field builds either).
@@ -61,6 +63,7 @@ public:
         while (step < target) advance();
     }
     virtual const std::vector<double>& heat_flow() = 0;  // Q at theta [W/m^3]
+    virtual void deposit(const std::vector<double>& e) = 0;  // header [J/m^3]
 
     void state(StateArchive& ar) { ar("heat.T", theta), ar("heat.step", step); }
 

@@ -55,6 +55,7 @@ struct PlasticCorrespondence {
     }
     const ThermalExpansion& thermal_expansion() const { return thermal; }
 
+    double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
     void commit()
     {
         hist_c = hist;

@@ -46,6 +46,7 @@ struct PlasticLPS {
     }
 
     void recompute(const Bonds& b) { lps.recompute(b); }  // after bonds broke (header)
+    double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
     void commit()
     {
         edp_c = edp;

@@ -48,6 +48,7 @@ struct PlasticPALS {
     }
 
     void recompute(const Bonds& b) { pals.recompute(b); }  // after bonds broke (header)
+    double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
     void commit()
     {
         edp_c = edp;

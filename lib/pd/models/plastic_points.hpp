@@ -68,6 +68,8 @@ struct PlasticPoints {
         heat_source[i] = dt > 0 ? beta_TQ * r.dissipation / dt : 0.0;  // an instantaneous step: no power
     }
     void commit() { ep_c = ep; }
+    // Heat of the last step at node i, beta_TQ sigma_y dlambda [J/m^3] (DissipativeModel).
+    double step_heat(std::size_t i) const { return heat_source[i] * dt; }
     // Its part of a checkpoint (core/state_archive.hpp).
     void state(StateArchive& ar)
     {

@@ -90,6 +90,7 @@ public:
     }
 
     // The trial state becomes the committed one.
+    double step_heat(std::size_t i) const { return dissipation[i]; }  // DissipativeModel: all of it becomes heat
     void commit()
     {
         step_.accept(y_t_);

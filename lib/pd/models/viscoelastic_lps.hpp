@@ -70,6 +70,7 @@ struct ViscoelasticLPS {
     }
 
     // The trial state becomes the committed history.
+    double step_heat(std::size_t i) const { return dissipation[i]; }  // DissipativeModel: all of it becomes heat
     void commit()
     {
         ed_c = ed_t;

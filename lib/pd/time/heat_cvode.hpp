@@ -81,6 +81,11 @@ public:
             throw std::invalid_argument("CVODE heat: time-dependent held temperatures (fixed_at) are not written");
     }
     const HeatCvode<Model>* solver() const { return cvode_.get(); }  // null before the first step
+    // CVODE's own state would not see the change (its integrator would need a restart).
+    void deposit(const std::vector<double>&) override
+    {
+        throw std::invalid_argument("CVODE heat: deposited heat (dissipation) is not written; use explicit or implicit Euler");
+    }
 
 protected:
     void take_step() override
