@@ -7,7 +7,11 @@
 // takes: rate-independent return, no heat source; without dt: the last step given, quasi-static
 // solvers); commit() makes the trial history the committed one.
 // Dissipated power (spec/000b eqs. 5.22-5.23, 5.51): p_i = beta_TQ sigma_y dlambda / dt [W/m^3],
-// the heat source of a thermo-mechanical scene (heat_source, after point_pass).
+// the heat source of a thermo-mechanical scene (heat_source, after point_pass; step_heat, its energy
+// over the step, is what a scene's heat component accumulates, scene.hpp).
+// Node temperatures of the Johnson-Cook law: temperature_field when set (a scene's temperature field,
+// read at each return: plastic heating then softens the law), else the vector temperature, else
+// law.theta_ref.
 // Also the trial deviatoric bond extension e_de of the two ordinary models (LPS, PALS).
 #pragma once
 #include "pd/core/bonds.hpp"
@@ -19,6 +23,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pd {
@@ -29,6 +34,7 @@ struct PlasticPoints {
     double dt = 1;                        // step of the trial evaluation [s] (quasi-static: any, C = 0)
     std::vector<std::uint8_t> plastic;    // 1: J2 return at this node, 0: elastic; empty = all plastic
     std::vector<double> temperature;      // node temperature [law's unit]; empty = law.theta_ref
+    const std::vector<double>* temperature_field = nullptr;  // header (set_temperature_field); must outlive the model's use
     std::vector<double> ep_c, ep;         // committed and trial equivalent plastic strain [-]
     std::vector<double> dlambda;          // trial plastic multiplier of the step [-]
     std::vector<double> sigma_eff;        // trial end-of-step von Mises stress [Pa]
@@ -47,8 +53,18 @@ struct PlasticPoints {
         if (!(step >= 0)) throw std::invalid_argument("point_pass: time step dt must be >= 0");
         dt = step;
     }
+    // Reads the node temperatures from t (null: back to `temperature`); throws for another length.
+    void set_temperature_field(const std::vector<double>* t)
+    {
+        if (t && t->size() != ep_c.size())
+            throw std::invalid_argument("PlasticPoints: " + std::to_string(t->size()) + " temperatures for " + std::to_string(ep_c.size()) + " nodes");
+        temperature_field = t;
+    }
     bool is_plastic(std::size_t i) const { return plastic.empty() || plastic[i]; }
-    double theta(std::size_t i) const { return temperature.empty() ? law.theta_ref : temperature[i]; }
+    double theta(std::size_t i) const
+    {
+        return temperature_field ? (*temperature_field)[i] : temperature.empty() ? law.theta_ref : temperature[i];
+    }
 
     // The scalar return (j2.hpp) of node i from its committed ep, recorded as the trial state;
     // an elastic node records sigma_eff_trial only.
