@@ -77,6 +77,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
         std::printf("dt = %.17g s (given; Silling-Askari critical step %.6g s, ratio %.3g)\n", cfg.dt, crit.dt, cfg.dt / crit.dt);
         if (cfg.dt > crit.dt) std::printf("warning: --dt exceeds the Silling-Askari critical step; the run may go unstable\n");
     }
+    if (heat && cfg.heat.nsync_mk > 0) heat->follow_mechanics(cfg.heat.nsync_mk, cfg.dt);
     std::fflush(stdout);
 
     // The model by name (models/registry.hpp); the surface correction of PMB (reference: its own
@@ -193,7 +194,8 @@ int main(int argc, char** argv)
     cfg.mechanics = mechanics;
     cfg.heat = {.model = heat.heat, .integrator = heat.integrator, .k = heat.k, .rho_cv = rho * heat.cv, .T0 = heat.T0,
                 .dt = heat.dt, .hourglass = heat.hourglass, .measure = cfg.measure,
-                .correction = pd::parse_thermal_correction(heat.correction), .every = energy_every, .alpha = heat.alpha, .T_ref = heat.T_ref};
+                .correction = pd::parse_thermal_correction(heat.correction), .every = energy_every, .alpha = heat.alpha, .T_ref = heat.T_ref,
+                .nsync_mk = heat.nsync_mk, .source = heat.source};
     cfg.energy_every = energy_every;
     cfg.vtu_every = vtu_every;
     cfg.s0 = opt.given("s0") ? s0 : 0.0;

@@ -1,18 +1,21 @@
 // problems/pd_run_heat.hpp -- the heat-conduction part of pd_run (issue 4): its options, their
 // checks, and HeatRun: the library's temperature field of the point cloud (pd/heat/temperature_field.hpp;
 // with mechanics, the scene's heat component) with pd_run's guard and heat.csv.
-//   rho cv dT_i/dt = Q_i(T) on free nodes, T_i = T_fixed_i on held nodes (pd/heat/conduction.hpp),
+//   rho cv dT_i/dt = Q_i(T) + s on free nodes, T_i = T_fixed_i on held nodes (pd/heat/conduction.hpp),
 //   Q from Agwai's bond-based model or the correspondence heat model (pd/heat/agwai.hpp,
-//   correspondence_heat.hpp); no sources, no convection, no heat from the mechanics (yet).
+//   correspondence_heat.hpp), s = --heat-source; no convection, no heat from the mechanics (yet).
 // Thermal expansion (--alpha, --T-ref): with mechanics, PMB, LPS (with SCF) and correspondence (linear
 // law: the thermal strain; flanagan-taylor: its increment in each update) take the strain
 // alpha (T - T_ref) of the run's temperatures (pd/models/thermal_expansion.hpp, correspondence.hpp), and
 // so does the critical stretch of --s0; PALS is refused (exit 2).
 // Integrators: explicit Euler, implicit Euler, CVODE BDF (one output per thermal step).
 // dt_thermal default = 0.5 x the Gershgorin thermal critical step (spec/000b eq. 3.20).
+// Clock: --dt-thermal, or --nsync-mk N: one thermal step of N mechanical steps (spec/000a 3.3.4).
+// --heat-source s: a uniform volumetric source on the free points [W/m^3] (explicit, implicit Euler).
 // Heat guard: with no sources the exact temperatures stay in the range of the initial and held
-// values (maximum principle); a temperature outside that range widened by 10 x its width, or a
-// non-finite one, throws pd::Unstable naming the thermal step and the node.
+// values (maximum principle; with --heat-source s the range moves by s t/(rho cv)); a temperature
+// outside that range widened by 10 x its width, or a non-finite one, throws pd::Unstable naming the
+// thermal step and the node.
 // Writes heat.csv: thermal_step,t_s,heat_J (sum rho cv V T),T_min,T_max.
 #pragma once
 #include "pd_run_checkpoint.hpp"
@@ -48,6 +51,8 @@ struct HeatOptions {
     const double& hourglass;
     const std::string& correction;
     const double &alpha, &T_ref;
+    const int& nsync_mk;
+    const double& source;
 };
 
 inline HeatOptions add_heat_options(pd::io::Options& opt, double automatic)
@@ -62,7 +67,9 @@ inline HeatOptions add_heat_options(pd::io::Options& opt, double automatic)
             opt.add("heat-hourglass", 0.0, "hourglass suppression coefficient of --heat correspondence"),
             opt.add_string("thermal-correction", "none", "Agwai thermal correction factor", {"none", "per-node", "pair-mean"}),
             opt.add("alpha", 0.0, "linear thermal expansion coefficient (with --heat and mechanics; PMB, LPS, LPS+SCF, correspondence)", "1/K"),
-            opt.add("T-ref", automatic, "stress-free temperature of --alpha (required with it)", "K")};
+            opt.add("T-ref", automatic, "stress-free temperature of --alpha (required with it)", "K"),
+            opt.add_int("nsync-mk", 0, "mechanical steps per thermal step, N_sync(MK) (instead of --dt-thermal; with mechanics)"),
+            opt.add("heat-source", 0.0, "uniform volumetric heat source on the free points (with --heat)", "W/m^3")};
 }
 
 // Cross-checks of the heat options; `mechanics` = the mechanical run is on. fail() never returns.
@@ -71,7 +78,7 @@ void check_heat_options(const pd::io::Options& opt, const HeatOptions& h, bool m
 {
     const bool on = h.heat != "none";
     for (const char* name : {"k", "cv", "T0", "dt-thermal", "thermal-steps", "thermal-integrator", "heat-hourglass",
-                             "thermal-correction", "alpha", "T-ref"})
+                             "thermal-correction", "alpha", "T-ref", "nsync-mk", "heat-source"})
         if (opt.given(name) && !on) fail(std::string("option --") + name + " needs --heat agwai|correspondence");
     if (!on) return;
     for (const char* name : {"k", "cv"})
@@ -81,6 +88,13 @@ void check_heat_options(const pd::io::Options& opt, const HeatOptions& h, bool m
     if (opt.given("heat-hourglass") && h.heat != "correspondence") fail("option --heat-hourglass applies to --heat correspondence only");
     if (opt.given("thermal-correction") && h.heat != "agwai") fail("option --thermal-correction applies to --heat agwai only");
     if (h.hourglass < 0) fail("option --heat-hourglass must be >= 0, got " + pd::io::format_double(h.hourglass));
+    if (opt.given("nsync-mk")) {
+        if (h.nsync_mk < 1) fail("option --nsync-mk must be >= 1, got " + std::to_string(h.nsync_mk));
+        if (!mechanics) fail("option --nsync-mk needs the mechanics (not --mechanics off): it counts mechanical steps");
+        if (opt.given("dt-thermal")) fail("options --nsync-mk and --dt-thermal exclude each other (both set the thermal step)");
+    }
+    if (!std::isfinite(h.source)) fail("option --heat-source must be finite");
+    if (h.source != 0 && h.integrator == "cvode") fail("option --heat-source is written for --thermal-integrator explicit|implicit");
     if (opt.given("T-ref") && !opt.given("alpha")) fail("option --T-ref needs --alpha");
     if (!opt.given("alpha")) return;
     if (!mechanics) fail("option --alpha needs the mechanics (not --mechanics off)");
@@ -95,6 +109,8 @@ struct HeatSettings {
     long every = 1;  // heat.csv row every k thermal steps
     bool resumed = false;  // restarted from a checkpoint: heat.csv is written by state(), not by init
     double alpha = 0, T_ref = 0;  // thermal expansion [1/K] and its stress-free temperature [K]; alpha 0: none
+    long nsync_mk = 0;            // mechanical steps per thermal step (0: dt above)
+    double source = 0;            // uniform volumetric source on the free points [W/m^3]
 };
 
 // The run's temperature field (pd/heat/temperature_field.hpp: the model and integrator of the settings)
@@ -104,16 +120,19 @@ public:
     template <class Model>
     HeatRun(Model model, const HeatSettings& s, const pd::io::PointCloud& pc, const pd::Bonds& bonds, const std::filesystem::path& out,
             void (*fail)(const std::string&))
-        : rho_cv_(s.rho_cv), every_(s.every), volume_(pc.volume), log_path_(out / "heat.csv")
+        : rho_cv_(s.rho_cv), source_(s.source), every_(s.every), volume_(pc.volume), log_path_(out / "heat.csv")
     {
         std::vector<double> T0(pc.size());
         for (std::size_t i = 0; i < pc.size(); ++i) T0[i] = std::isnan(pc.T0[i]) ? s.T0 : pc.T0[i];
-        const pd::HeatIntegrator integrator = pd::parse_heat_integrator(s.integrator);
-        auto field = pd::make_temperature_field(std::move(model), bonds, std::vector<double>(pc.size(), s.rho_cv), loads(pc), std::move(T0), integrator);
+        const pd::HeatIntegrator integrator = integrator_ = pd::parse_heat_integrator(s.integrator);
+        auto field = pd::make_temperature_field(std::move(model), bonds, std::vector<double>(pc.size(), s.rho_cv), loads(pc, s.source), std::move(T0),
+                                                integrator);
         std::printf("heat: model %s, integrator %s, held temperatures %zu\n", s.model.c_str(), s.integrator.c_str(),
                     field->conduction().loads().fixed.size());
-        const double crit = field->critical_step();
-        if (std::isnan(s.dt)) {
+        const double crit = crit_ = field->critical_step();
+        if (s.nsync_mk > 0) {
+            // set by follow_mechanics once the mechanical step is known
+        } else if (std::isnan(s.dt)) {
             if (!std::isfinite(crit)) fail("option --dt-thermal is required: no free point has a bond within --delta");
             field->dt = thermal_dt_safety * crit;
             std::printf("dt_thermal = %.17g s (%.2g x thermal critical step %.6g s)\n", field->dt, thermal_dt_safety, crit);
@@ -132,6 +151,16 @@ public:
         if (s.resumed) return;  // the complete heat.csv of the first run stays until log_state() rewrites it
         open_log();
         record();  // thermal step 0
+    }
+
+    // The thermal step of N_sync(MK) mechanical steps of dt_mech [s] (--nsync-mk).
+    void follow_mechanics(long nsync, double dt_mech)
+    {
+        field_->dt = double(nsync) * dt_mech;
+        std::printf("dt_thermal = %.17g s (N_sync(MK) = %ld mechanical steps; thermal critical step %.6g s, ratio %.3g)\n", field_->dt, nsync, crit_,
+                    field_->dt / crit_);
+        if (field_->dt > crit_ && integrator_ == pd::HeatIntegrator::explicit_euler)
+            std::printf("warning: --nsync-mk x dt exceeds the thermal critical step; explicit Euler may go unstable\n");
     }
 
     pd::TemperatureField& field() { return *field_; }
@@ -153,16 +182,18 @@ public:
 
 private:
     std::unique_ptr<pd::TemperatureField> field_;
-    double rho_cv_ = 0, lo_ = 0, hi_ = 0;
+    pd::HeatIntegrator integrator_ = pd::HeatIntegrator::explicit_euler;
+    double rho_cv_ = 0, source_ = 0, crit_ = 0, lo_ = 0, hi_ = 0;  // crit_: thermal critical step at the start [s]
     long every_ = 1;
     std::vector<double> volume_;
     std::filesystem::path log_path_;
     std::unique_ptr<pd::io::CsvWriter> log_;
     std::vector<double> rows_;  // the rows of heat.csv (5 per row), for a checkpoint
 
-    static pd::HeatLoads loads(const pd::io::PointCloud& pc)
+    static pd::HeatLoads loads(const pd::io::PointCloud& pc, double source)
     {
         pd::HeatLoads l;
+        if (source != 0) l.source.assign(pc.size(), source);
         for (std::size_t i = 0; i < pc.size(); ++i)
             if (!std::isnan(pc.T_fixed[i])) l.fixed.push_back(int(i)), l.fixed_value.push_back(pc.T_fixed[i]);
         return l;
@@ -170,11 +201,13 @@ private:
     // After each thermal step: the guard, and a heat.csv row every k steps and at the last one.
     void guard_and_log(const pd::TemperatureField& f)
     {
+        const double shift = source_ * f.t() / rho_cv_ * (1 + 1e-9);  // a uniform source moves the band by s t/(rho cv)
+        const double lo = lo_ + std::min(shift, 0.0), hi = hi_ + std::max(shift, 0.0);
         for (std::size_t i = 0; i < f.theta.size(); ++i)
-            if (!std::isfinite(f.theta[i]) || f.theta[i] < lo_ || f.theta[i] > hi_)
+            if (!std::isfinite(f.theta[i]) || f.theta[i] < lo || f.theta[i] > hi)
                 throw pd::Unstable("heat run unstable at thermal step " + std::to_string(f.step) + ", node " + std::to_string(i) +
                                        ": T = " + pd::io::format_double(f.theta[i]) + " outside the guard band [" +
-                                       pd::io::format_double(lo_) + ", " + pd::io::format_double(hi_) + "]",
+                                       pd::io::format_double(lo) + ", " + pd::io::format_double(hi) + "]",
                                    f.step, int(i));
         if (f.step % every_ == 0 || f.step == last_step) record();
     }
