@@ -7,7 +7,7 @@
 // Thermal expansion (--alpha, --T-ref): with mechanics, PMB, LPS (with SCF) and correspondence (linear
 // law: the thermal strain; flanagan-taylor: its increment in each update) take the strain
 // alpha (T - T_ref) of the run's temperatures (pd/models/thermal_expansion.hpp, correspondence.hpp), and
-// so does the critical stretch of --s0; PALS is refused (exit 2).
+// so does the critical stretch of --s0; and PALS (per node, pals.hpp): every model of pd_run.
 // Integrators: explicit Euler, implicit Euler, CVODE BDF (one output per thermal step).
 // dt_thermal default = 0.5 x the Gershgorin thermal critical step (spec/000b eq. 3.20).
 // Clock: --dt-thermal, or --nsync-mk N: one thermal step of N mechanical steps (spec/000a 3.3.4).
@@ -66,7 +66,7 @@ inline HeatOptions add_heat_options(pd::io::Options& opt, double automatic)
             opt.add_string("thermal-integrator", "explicit", "heat integrator", {"explicit", "implicit", "cvode"}),
             opt.add("heat-hourglass", 0.0, "hourglass suppression coefficient of --heat correspondence"),
             opt.add_string("thermal-correction", "none", "Agwai thermal correction factor", {"none", "per-node", "pair-mean"}),
-            opt.add("alpha", 0.0, "linear thermal expansion coefficient (with --heat and mechanics; PMB, LPS, LPS+SCF, correspondence)", "1/K"),
+            opt.add("alpha", 0.0, "linear thermal expansion coefficient (with --heat and mechanics)", "1/K"),
             opt.add("T-ref", automatic, "stress-free temperature of --alpha (required with it)", "K"),
             opt.add_int("nsync-mk", 0, "mechanical steps per thermal step, N_sync(MK) (instead of --dt-thermal; with mechanics)"),
             opt.add("heat-source", 0.0, "uniform volumetric heat source on the free points (with --heat)", "W/m^3")};
@@ -241,7 +241,7 @@ void attach_thermal_expansion(Model& model, const HeatSettings& s, HeatRun* heat
     if constexpr (requires { model.set_thermal_expansion(pd::ThermalExpansion{}); })
         model.set_thermal_expansion({s.alpha, s.T_ref, &heat->T()});
     else
-        fail(std::string("option --alpha applies to --model pmb, lps, lps-scf and correspondence (thermal expansion of ").append(name).append(" is not written)"));
+        fail(std::string("option --alpha: thermal expansion of ").append(name).append(" is not written"));
 }
 
 // The heat run of the settings on the given family (bonds must outlive it).

@@ -38,11 +38,11 @@ std::string cube(double T0)
 // The free expansion u_s = eps (x - c) is the static solution (no force at y = x + u_s), so from rest
 // each mode's amplitude follows q_s (1 - cos omega t): the projection P(t) = sum (x - c).u / (eps
 // sum |x - c|^2) (equal point masses) stays in [0, 2] and is > 0 once it moves. dt = 1e-8 s (about
-// 0.1 of the stable step) keeps Verlet's energy error below 1e-3 of W0. LPS, correspondence with the
-// linear law (the thermal strain) and with Flanagan-Taylor (its increment at the first update).
+// 0.1 of the stable step) keeps Verlet's energy error below 1e-3 of W0. LPS, PALS, correspondence with
+// the linear law (the thermal strain) and with Flanagan-Taylor (its increment at the first update).
 TEST(PdRunThermalExpansion, HeatedFreeCubeStartsWithTheConstrainedEnergyAndExpands)
 {
-    for (const std::string model : {"lps", "correspondence", "correspondence --stress-law flanagan-taylor"}) {
+    for (const std::string model : {"lps", "pals", "correspondence", "correspondence --stress-law flanagan-taylor"}) {
         const Result r = pd_run("te_" + model.substr(0, 4) + std::to_string(model.size()),
                                 "--input " + cube(T_ref + dT) + heat + " --model " + model + " --alpha " + num(alpha) + " --T-ref " +
                                     num(T_ref) + " --dt 1e-8 --steps 300 --energy-every 10 --output-steps 100,200,300");
@@ -97,7 +97,6 @@ TEST(PdRunThermalExpansion, BadInputsExitTwoWithOneLine)
         {in + heat + " --T-ref 20", "--T-ref needs --alpha"},
         {"--input " + cube(T_ref) + " --heat agwai --k 50 --cv 500 --rho 7800 --delta 3e-3 --mechanics off --alpha 1e-5 --T-ref 20",
          "--alpha needs the mechanics"},
-        {in + heat + " --model pals --alpha 1e-5 --T-ref 20", "--alpha applies to --model pmb, lps, lps-scf and correspondence"},
         {"--input " + plate.string() + " --steps 5" + heat + " --dim 2 --plane strain --model correspondence --alpha 1e-5 --T-ref 20",
          "plane strain"},
     };

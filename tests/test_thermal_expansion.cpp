@@ -1,5 +1,5 @@
 // Thermal expansion of the ordinary models (models/thermal_expansion.hpp; spec/000a eq. 2.80 with
-// erratum E9, verification case V7) for PMB, LPS and LPS with SCF, on a bar long enough for the
+// erratum E9, verification case V7) for PMB, LPS, LPS with SCF and PALS, on a bar long enough for the
 // chunk path (nodes 3 .. 16 of each 20-node row):
 // - a free body at y = (1 + eps) x with eps = alpha dtheta carries no force, also with broken bonds;
 // - a body held at y = x has the dilatation -3 eps at every node and the energy density of a fully
@@ -11,6 +11,8 @@
 #include "pd/core/lattice.hpp"
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/models/lps.hpp"
+#include "pd/models/pals.hpp"
+#include "pd/models/plastic_pals.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/models/viscoelastic_lps.hpp"
 
@@ -46,19 +48,22 @@ double max_norm(const Field<3>& f)
     return m;
 }
 // The models on b, each with thermal expansion from theta (null: none): PMB, LPS (intact and
-// reference weighted volume) and LPS+SCF.
+// reference weighted volume), LPS+SCF and PALS.
 template <class Fn>
 void for_each_model(const Bonds& b, const Body<3>& body, const std::vector<double>* theta, Fn&& fn)
 {
     const ThermalExpansion t{alpha, theta_ref, theta};
     PMB pmb({mat, 3}, b);
     LPS lps({mat, 3}, b), scf({mat, 3}, b), ref({mat, 3, Plane::strain, LPS::Params::WeightedVolume::reference}, b);
+    PALS pals({.material = mat}, body, b);
     scf.apply_shear_correction(body.x);
     if (theta) pmb.set_thermal_expansion(t), lps.set_thermal_expansion(t), scf.set_thermal_expansion(t), ref.set_thermal_expansion(t);
+    if (theta) pals.set_thermal_expansion(t);
     fn("PMB", pmb);
     fn("LPS", lps);
     fn("LPS+SCF", scf);
     fn("LPS reference m", ref);
+    fn("PALS", pals);
 }
 }  // namespace
 
@@ -98,11 +103,14 @@ TEST(ThermalExpansion, ClampedBodyIsUnderHydrostaticPressure)
     const std::vector<double> theta(body.size(), theta_ref + heat);
     const double eps = alpha * heat, W = 4.5 * mat.K * eps * eps;  // classical: K (tr eps_th)^2 / 2
     for_each_model(b, body, &theta, [&](const char* name, auto& model) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, LPS>) {
+        using M = std::decay_t<decltype(model)>;
+        if constexpr (std::is_same_v<M, LPS> || std::is_same_v<M, PALS>) {
             model.point_pass(b, body.x);
             const std::vector<double> w = model.energy_density(b, body.x);
             for (std::size_t i = 0; i < body.size(); ++i) {  // every node, surfaces included
-                EXPECT_NEAR(model.theta[i], -3 * eps, 1e-12 * eps) << name << " node " << i;
+                if constexpr (std::is_same_v<M, LPS>) {
+                    EXPECT_NEAR(model.theta[i], -3 * eps, 1e-12 * eps) << name << " node " << i;
+                }
                 EXPECT_NEAR(w[i], W, 1e-10 * W) << name << " node " << i;
             }
         }
@@ -250,6 +258,9 @@ TEST(ThermalExpansion, ModelsWithoutItRefuseIt)
     ViscoelasticLPS visco({{mat, 3}, 1.0, 1e-6}, b);
     visco.lps.set_thermal_expansion({alpha, theta_ref, &theta});
     EXPECT_THROW(visco.point_pass(b, body.x, 1e-9), std::invalid_argument);
+    PlasticPALS plastic({.material = mat}, body, b, laws::JohnsonCook{.A = 1e8, .B = 0, .n = 1});
+    plastic.pals.set_thermal_expansion({alpha, theta_ref, &theta});
+    EXPECT_THROW(plastic.point_pass(b, body.x, 1e-9), std::invalid_argument);
     const Body<2> plate = box<2>({{0, 0}}, {{6 * dx, 6 * dx}}, dx, dx);
     Bonds b2 = build_bonds(plate, 3 * dx);
     const std::vector<double> theta2(plate.size(), theta_ref + heat);

@@ -59,7 +59,7 @@ bool solve6(Mat6 A, Vec6 rhs, PALS::Multipliers& out)
 
 PALS::PALS(const Params& prm, const Body<3>& body, const Bonds& b)
     : K(prm.material.K), G(prm.material.G), delta(b.delta),
-      lambda(b.nodes()), tau(b.nodes()), m_sigma(b.nodes(), 0.0), theta(b.nodes(), 0.0), p(b.nodes(), 0.0),
+      lambda(b.nodes()), tau(b.nodes()), m_sigma(b.nodes(), 0.0), m_omega(b.nodes(), 0.0), theta(b.nodes(), 0.0), p(b.nodes(), 0.0),
       w_i(b.size()), w_j(b.size()), s_i(b.size()), s_j(b.size()), bonds(&b), x(&body.x),
       omega0_base(prm.omega0), sigma0_base(prm.sigma0), length(b.length.data())
 {
@@ -93,7 +93,7 @@ void PALS::recompute(const Bonds& b)
     bonds = &b;
     length = b.length.data();
     const std::size_t nn = b.nodes(), nb = b.size();
-    lambda.resize(nn); tau.resize(nn); m_sigma.resize(nn); theta.resize(nn); p.resize(nn);
+    lambda.resize(nn); tau.resize(nn); m_sigma.resize(nn); m_omega.resize(nn); theta.resize(nn); p.resize(nn);
     w_i.resize(nb); w_j.resize(nb); s_i.resize(nb); s_j.resize(nb);
     const Field<3>& X = *x;
     const double d3 = delta * delta * delta, d5 = d3 * delta * delta;
@@ -123,7 +123,7 @@ void PALS::recompute(const Bonds& b)
     });
     singular_nodes = 0;
     for (auto s : singular) singular_nodes += s;
-    // 2. Per bond: omega and sigma of both ends, and m_sigma = (sigma_i x)•x per node.
+    // 2. Per bond: omega and sigma of both ends, and m_sigma = (sigma_i x)•x, m_omega = (omega_i x)•x per node.
     auto omega_hat = [&](std::size_t n, const Vec<3>& h, double r) {
         const Vec6 q = dilatation_basis(h[0], h[1], h[2]);
         double w = omega0_base(r, delta) * w0;
@@ -137,7 +137,7 @@ void PALS::recompute(const Bonds& b)
         return s;
     };
     parallel_for(b.nodes(), [&](std::size_t i) {
-        double ms = 0;
+        double ms = 0, mw = 0;
         for_family(b, i, [&](std::int64_t k, int j) {
             const Vec<3> h = xi_hat(i, j);
             const double r = b.length[k];
@@ -147,9 +147,10 @@ void PALS::recompute(const Bonds& b)
             const double si = sigma_hat(i, h, r);
             s_i[k] = 2 * G * si * V / (delta * delta);
             s_j[k] = 2 * G * sigma_hat(j, h, r) * V / (delta * delta);
-            if (!b.has_damage() || b.intact[k]) ms += si * dot(h, h) * V;
+            if (!b.has_damage() || b.intact[k]) ms += si * dot(h, h) * V, mw += omega_hat(i, h, r) * dot(h, h) * V;
         });
         m_sigma[i] = ms;
+        m_omega[i] = mw;
     });
 #ifdef PD_CHUNK_WIDTH
     runs = b.has_damage() ? TranslatedRuns{} : find_translated_runs(b, detail::chunk_width, {&b.length, &w_i, &w_j, &s_i, &s_j});

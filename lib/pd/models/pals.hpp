@@ -27,6 +27,12 @@
 // Pair force on i: (t_i<xi> + t_j<-xi>) V_j Y/|Y| (omega and sigma are even in xi), through
 // bond_scalar with t regrouped as in Peridigm: t = p_i omega_i |xi| + 2G sigma_i (e - theta_i
 // |xi|/3), p_i = (K + 2G m_sigma/9) theta_i - (2G/3)(sigma_i x)•e, m_sigma = (sigma_i x)•x.
+// Thermal expansion (models/thermal_expansion.hpp, set_thermal_expansion): e_mech = e - eps_i |xi| with
+// the owner node's eps_i = alpha (theta_i - theta_ref), per node only: the mechanical dilatation is
+// theta_i - eps_i m_omega_i, (sigma_i x)•e_mech = (sigma_i x)•e - eps_i m_sigma_i, and the deviatoric
+// extension e_mech - theta_mech |xi|/3 = e - theta_i |xi|/3 with theta_i the total dilatation (kept in
+// `theta`, which the bond kernel reads), since m_omega = 3 wherever the systems are regular; so p_i
+// alone carries it and the bond kernel and chunks are unchanged.
 // Multipliers use the intact bonds; after damage call recompute(bonds) (a scene, scene.hpp, does it whenever
 // bonds break): the damaged body is then the body built without the broken bonds
 // (tests/test_damage_models.cpp). Before recompute the multipliers are those of the old families.
@@ -41,6 +47,7 @@
 #include "pd/core/lattice.hpp"
 #include "pd/core/material.hpp"
 #include "pd/core/parallel.hpp"
+#include "pd/models/thermal_expansion.hpp"
 #include "pd/simd/translated_families.hpp"
 
 #include <array>
@@ -67,7 +74,8 @@ struct PALS {
     std::vector<Multipliers> lambda;    // omega multipliers per node, lambda * delta^5 [-]
     std::vector<Multipliers> tau;       // sigma multipliers per node, tau * delta^5 [-]
     std::vector<double> m_sigma;        // (sigma_i x)•x per node [-]
-    std::vector<double> theta;          // dilatation, updated by point_pass [-]
+    std::vector<double> m_omega;        // (omega_i x)•x per node [-] (3 where the system is regular)
+    std::vector<double> theta;          // dilatation (thermal strain included, header), updated by point_pass [-]
     std::vector<double> p;              // PALS pressure p_i, updated by point_pass [Pa]
     std::vector<double> w_i, w_j;       // omega_i<xi> V_j and omega_j<xi> V_j per bond i->j [1/m^2]
     std::vector<double> s_i, s_j;       // 2G sigma_i<xi> V_j and 2G sigma_j<xi> V_j per bond [Pa/m^2]
@@ -84,6 +92,15 @@ struct PALS {
     // Solve the two 6x6 systems of every node over the intact bonds of `b` and refresh the
     // per-bond influence values (after damage, or after a change of partial volumes).
     void recompute(const Bonds& b);
+
+    // Thermal expansion (header); ThermalExpansion{} switches it off. Throws std::invalid_argument for a
+    // temperature vector of another length.
+    void set_thermal_expansion(const ThermalExpansion& t)
+    {
+        t.validate(theta.size());
+        thermal = t;
+    }
+    const ThermalExpansion& thermal_expansion() const { return thermal; }
 
     // Influence states of node i at bond vector xi [1/m^5] (from the stored multipliers).
     double omega(std::size_t i, const Vec<3>& xi) const;
@@ -136,19 +153,28 @@ struct PALS {
             const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L * third;
             return s_i[k] * ed * ed;
         };
-        return node_sums(b, bond, [&](std::size_t i, double dev) { return 0.5 * K * theta[i] * theta[i] + 0.5 * dev; });
+        return node_sums(b, bond, [&](std::size_t i, double dev) {
+            const double th = theta[i] - thermal.strain(i) * m_omega[i];  // the mechanical dilatation
+            return 0.5 * K * th * th + 0.5 * dev;
+        });
     }
 
 private:
     static constexpr double third = 1.0 / 3.0;
     const double* length = nullptr;  // |xi| of the bonds [m]
+    ThermalExpansion thermal;        // header; inactive by default
 
     // theta_i = (omega_i x)•e and p_i = (K + 2G m_sigma/9) theta - (2G/3)(sigma x)•e from the
-    // two family sums (s_i already holds 2G sigma V).
+    // two family sums (s_i already holds 2G sigma V), e the mechanical extension (header).
     void set_dilatation(std::size_t i, double omega_xe, double sigma_xe)
     {
         theta[i] = omega_xe;
-        p[i] = (K + 2 * G * m_sigma[i] / 9) * omega_xe - third * sigma_xe;
+        const double eps = thermal.strain(i);
+        if (eps == 0) {
+            p[i] = (K + 2 * G * m_sigma[i] / 9) * omega_xe - third * sigma_xe;
+            return;
+        }
+        p[i] = (K + 2 * G * m_sigma[i] / 9) * (omega_xe - eps * m_omega[i]) - third * (sigma_xe - 2 * G * eps * m_sigma[i]);
     }
 };
 

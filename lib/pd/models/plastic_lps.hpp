@@ -70,7 +70,7 @@ struct PlasticLPS {
     void point_pass(const Bonds& b, const Field<3>& y)
     {
         if (lps.thermal_expansion().active())  // its deviatoric extension would not take it
-            throw std::invalid_argument("PlasticLPS: thermal expansion is not written for this model (PMB and LPS have it)");
+            throw std::invalid_argument("PlasticLPS: thermal expansion is not written for this model");
         lps.point_pass(b, y);
         const double G = lps.G;
         const bool damaged = b.has_damage();

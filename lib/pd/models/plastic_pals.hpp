@@ -71,6 +71,8 @@ struct PlasticPALS {
     }
     void point_pass(const Bonds& b, const Field<3>& y)
     {
+        if (pals.thermal_expansion().active())  // its deviatoric extension would not take it
+            throw std::invalid_argument("PlasticPALS: thermal expansion is not written for this model");
         pals.point_pass(b, y);
         const double G = pals.G;
         const bool damaged = b.has_damage();

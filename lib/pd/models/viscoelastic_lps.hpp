@@ -91,7 +91,7 @@ struct ViscoelasticLPS {
     void point_pass(const Bonds& b, const Field<D>& y)
     {
         if (lps.thermal_expansion().active())  // its e_d and Maxwell branch would not take it
-            throw std::invalid_argument("ViscoelasticLPS: thermal expansion is not written for this model (PMB and LPS have it)");
+            throw std::invalid_argument("ViscoelasticLPS: thermal expansion is not written for this model");
         lps.point_pass(b, y);
         const laws::MaxwellCoefficients c = laws::maxwell_coefficients(dt, tau_b);
         const bool damaged = b.has_damage();
