@@ -26,6 +26,11 @@
 // Temperature-dependent J_C (000c sec. 2.4, eqs. 8.21-8.23, V9): with per-node ratios
 // r_i = J_C(theta_ref) / J_C(theta_i) set in `jc_ratio`, the increment is scaled by (r_i + r_j)/2 and
 // compared with w_C(theta_ref): each end weighted by its own temperature as in (8.23).
+// Thermal expansion (set_thermal_expansion with the model's ThermalExpansion and the reference
+// positions): the work is that of the mechanical displacement, dY less the thermal bond displacement
+// alpha dtheta_pair xi of the step, dtheta_pair the mean of the two ends' temperature changes since the
+// previous pass (000c sec. 2.3 [CODE]: the thermal-expansion bond velocity is subtracted first), so a
+// heated clamped bar stores its compression energy as w and a freely expanding one none.
 // Singular nodes (000c sec. 2.5, the thesis' rule for correspondence): when a model exposes K^-1 and F
 // per node, a node whose K is singular (K^-1 = 0, correspondence.hpp) or with det F <= 0 loses all
 // its bonds at the next breaking pass.
@@ -41,6 +46,7 @@
 #include "pd/core/lattice.hpp"
 #include "pd/core/state_archive.hpp"
 #include "pd/core/parallel.hpp"
+#include "pd/models/thermal_expansion.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -67,6 +73,15 @@ struct CriticalMicropotential {
     bool hourglass_work = true;          // w includes the work of hourglass forces (false: Peridigm's w)
     std::vector<std::uint8_t> detached;  // per node, 1 = all bonds break at the next apply
     long detached_nodes = 0;             // nodes detached so far by the singular rule
+
+    // Thermal expansion of the model (header), with the reference positions x of the body (both must
+    // outlive the rule's use); ThermalExpansion{} switches it off.
+    void set_thermal_expansion(const ThermalExpansion& t, const Field<D>& x)
+    {
+        t.validate(x.size());
+        thermal_ = t, x_ = &x;
+        theta_old_.clear();
+    }
 
     // The micropotential of bond k's pair, w_ij = w_ji, from whichever half holds it [J/m^6 in 3D].
     double work(const Bonds& b, std::int64_t k) const
@@ -127,6 +142,13 @@ struct CriticalMicropotential {
         work_.volume = b.volume.data();
         work_.ratio = jc_ratio.empty() ? nullptr : jc_ratio.data();
         work_.hourglass = hourglass_work;
+        work_.thermal_increment = nullptr;
+        if (thermal_.active() && !first && theta_old_.size() == b.nodes()) {  // alpha (theta - theta at the last pass)
+            increment_.resize(b.nodes());
+            for (std::size_t i = 0; i < b.nodes(); ++i) increment_[i] = thermal_.alpha * ((*thermal_.theta)[i] - theta_old_[i]);
+            work_.thermal_increment = increment_.data();
+            for (int a = 0; a < D; ++a) work_.x[a] = x_->c[a].data();
+        }
         handed_out_ = true;
         return &work_;
     }
@@ -144,6 +166,7 @@ struct CriticalMicropotential {
         }
         handed_out_ = false;
         y_ = y;
+        if (thermal_.active()) theta_old_ = *thermal_.theta;
         if (detach_singular) detached_nodes += mark_singular_nodes(model, b.nodes(), detached);  // also wrappers (.model)
     }
 
@@ -159,6 +182,7 @@ struct CriticalMicropotential {
         ar("micropotential.y", y_);
         ar("micropotential.detached", detached);
         ar("micropotential.detached_nodes", detached_nodes);
+        if (thermal_.active()) ar("micropotential.theta_old", theta_old_);
     }
 
 private:
@@ -167,6 +191,10 @@ private:
     BondWork work_;
     bool handed_out_ = false;  // bond_work was called since the last accumulate
     Field<D> y_;               // positions at the last accumulate [m]
+    ThermalExpansion thermal_;            // header; inactive by default
+    const Field<D>* x_ = nullptr;         // reference positions (thermal expansion) [m]
+    std::vector<double> theta_old_;       // temperatures at the last accumulate
+    std::vector<double> increment_;       // alpha (theta - theta_old) per node, for the pass [-]
 
     std::size_t stride() const { return static_cast<std::size_t>(work_.components) + 1; }
     double w_of(std::int64_t k) const { return rec_[stride() * k + work_.components]; }

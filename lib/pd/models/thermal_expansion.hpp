@@ -11,9 +11,9 @@
 // must outlive the model's use. 2D plane strain is refused: its free in-plane strain is (1 + nu) alpha
 // dtheta (eps_zz = 0), a factor not written yet; 1D, 2D plane stress and 3D take alpha dtheta.
 // Damage: the critical-stretch rule compares the mechanical stretch when given the same
-// ThermalExpansion (damage/critical_stretch.hpp). The micropotential rule integrates the work of the
-// bond force over the whole motion, thermal expansion included (the source's code subtracts the
-// thermal bond velocity alpha dtheta_dot xi first, spec/000c sec. 2.3: not done here yet).
+// ThermalExpansion (damage/critical_stretch.hpp); the micropotential rule, given it by its
+// set_thermal_expansion, takes the work along the mechanical displacement only (the thermal bond
+// displacement alpha dtheta xi of each step subtracted, spec/000c sec. 2.3; damage/micropotential.hpp).
 // Wrappers of these models that have their own extension (viscoelastic and plastic LPS) and the
 // lateral images of bc/lateral_images.hpp refuse an active thermal expansion.
 // Models with thermal expansion: PMB (whose pair force takes the mean of the two ends' eps, which is
