@@ -51,20 +51,31 @@ void run(Model& model, Bonds& b, CriticalMicropotential<3>& mp, std::vector<doub
         mp.accumulate(model, b, y);
     }
 }
+// A PMB block with thermal expansion from theta, and a micropotential rule that never breaks.
+struct ThermalPMB {
+    Body<3> body = block();
+    Bonds b = [&] {
+        Bonds bonds = build_bonds(body, delta);
+        bonds.enable_damage();
+        return bonds;
+    }();
+    std::vector<double> theta = std::vector<double>(body.size(), theta_ref);
+    PMB model{PMB::Params{.material = mat, .dim = 3}, b};
+    CriticalMicropotential<3> mp;
+    ThermalPMB()
+    {
+        const ThermalExpansion t{alpha, theta_ref, &theta};
+        model.set_thermal_expansion(t);
+        mp.w_c = 1e300;
+        mp.set_thermal_expansion(t, body.x);
+    }
+};
 }  // namespace
 
 TEST(MicropotentialThermal, HeatedClampedPMBStoresItsCompressionEnergy)
 {
-    const Body<3> body = block();
-    Bonds b = build_bonds(body, delta);
-    b.enable_damage();
-    std::vector<double> theta(body.size(), theta_ref);
-    PMB model({.material = mat, .dim = 3}, b);
-    const ThermalExpansion t{alpha, theta_ref, &theta};
-    model.set_thermal_expansion(t);
-    CriticalMicropotential<3> mp;
-    mp.w_c = 1e300;
-    mp.set_thermal_expansion(t, body.x);
+    ThermalPMB p;
+    auto& [body, b, theta, model, mp] = p;
     run(model, b, mp, theta, [&](int) { return body.x; }, heat);
     const double c = 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)), eps = alpha * heat;
     for (std::size_t k = 0; k < b.size(); ++k) {
@@ -75,16 +86,8 @@ TEST(MicropotentialThermal, HeatedClampedPMBStoresItsCompressionEnergy)
 
 TEST(MicropotentialThermal, StretchOnTopOfFreeExpansionWorksOnlyAlongTheMechanicalPart)
 {
-    const Body<3> body = block();
-    Bonds b = build_bonds(body, delta);
-    b.enable_damage();
-    std::vector<double> theta(body.size(), theta_ref);
-    PMB model({.material = mat, .dim = 3}, b);
-    const ThermalExpansion t{alpha, theta_ref, &theta};
-    model.set_thermal_expansion(t);
-    CriticalMicropotential<3> mp;
-    mp.w_c = 1e300;
-    mp.set_thermal_expansion(t, body.x);
+    ThermalPMB p;
+    auto& [body, b, theta, model, mp] = p;
     const double eps = alpha * heat, s_end = 2e-3;
     run(model, b, mp, theta, [&](int n) { return scaled(body, 1 + (eps + s_end) * n / steps); }, heat);
     const double c = 18 * mat.K / (std::numbers::pi * std::pow(delta, 4));
