@@ -7,7 +7,7 @@
 //   (the stored compression energy; without the correction w would stay 0);
 // - a body stretched by s on top of its free thermal expansion, y = (1 + eps + s) x with both ramped:
 //   w = c s^2 |xi| / 2 (without the correction the force would also work along the thermal part).
-// Correspondence (AVX2 damaged path): the body held at y = x and heated gets the same w, bond by bond, as
+// Correspondence: the body held at y = x and heated gets the same w, bond by bond, as
 // the isothermal body compressed to y = (1 - eps) x (the same stress and the same mechanical
 // increments; the isothermal work integral is checked against closed forms in test_micropotential_work.cpp).
 #include "pd/bond_loop.hpp"
@@ -18,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -82,6 +83,22 @@ TEST(MicropotentialThermal, HeatedClampedPMBStoresItsCompressionEnergy)
         const double w = c * eps * eps * b.length[k] / 2;
         ASSERT_NEAR(mp.work(b, k), w, 1e-9 * w) << k;
     }
+}
+
+// The thermal part changes w outside the force pass: the breaking test must see the corrected w.
+TEST(MicropotentialThermal, HeatedClampedPMBBreaksItsLongestBondsWhenTheyReachCritical)
+{
+    ThermalPMB p;
+    auto& [body, b, theta, model, mp] = p;
+    run(model, b, mp, theta, [&](int) { return body.x; }, heat);
+    double longest = 0, second = 0;
+    for (double L : b.length) longest = std::max(longest, L);
+    for (double L : b.length)
+        if (L < longest * (1 - 1e-9)) second = std::max(second, L);
+    const double c = 18 * mat.K / (std::numbers::pi * std::pow(delta, 4)), eps = alpha * heat;
+    mp.w_c = c * eps * eps * 0.5 * (longest + second) / 2;  // between the two longest bonds' w
+    EXPECT_GT(mp.apply(b), 0);
+    for (std::size_t k = 0; k < b.size(); ++k) EXPECT_EQ(b.intact[k] == 0, b.length[k] > longest * (1 - 1e-9)) << k;
 }
 
 TEST(MicropotentialThermal, StretchOnTopOfFreeExpansionWorksOnlyAlongTheMechanicalPart)

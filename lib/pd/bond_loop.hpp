@@ -63,11 +63,6 @@ struct BondWork {
     const double* ratio = nullptr;       // per node J_C(theta_ref)/J_C(theta_i), or null [-]
     double* w_max = nullptr;             // per node, out: the largest w of its bonds with j > i (lowest double: none)
     bool hourglass = true;               // f_k with the kernel's hourglass_force, if it has one (false: without)
-    // Thermal expansion: per node the free thermal strain increment since the previous pass,
-    // alpha (theta_i^(n+1) - theta_i^n), and the reference positions; the bond's displacement increment
-    // is then taken less its thermal part (de_i + de_j)/2 xi (spec/000c sec. 2.3 [CODE]). null: none.
-    const double* thermal_increment = nullptr;
-    const double* x[3] = {};             // reference positions [m] (with thermal_increment)
 };
 
 namespace detail {
@@ -138,11 +133,9 @@ inline double bond_work(const BondWork& o, std::size_t i, std::int64_t k, int j,
     double* r = o.rec + (C + 1) * k;  // g[0 .. C), then w
     if (o.y_old[0]) {
         double s = 0;
-        const double de = o.thermal_increment ? 0.5 * (o.thermal_increment[i] + o.thermal_increment[j]) : 0.0;
         for (int a = 0; a < D; ++a) {
             const double Yo = o.y_old[a][j] - o.y_old[a][i];
-            const double dY = o.thermal_increment ? Y[a] - Yo - de * (o.x[a][j] - o.x[a][i]) : Y[a] - Yo;  // mechanical part
-            s += (Ordinary ? r[0] * Yo + fk[0] * Y[a] : r[a] + fk[a]) * dY;
+            s += (Ordinary ? r[0] * Yo + fk[0] * Y[a] : r[a] + fk[a]) * (Y[a] - Yo);
         }
         double d = 0.5 * s / o.volume[k];
         if (o.ratio) d *= 0.5 * (o.ratio[i] + o.ratio[j]);

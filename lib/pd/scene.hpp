@@ -12,6 +12,9 @@
 //                      accumulated per node, e_abs += step_heat (eq. 3.24), and released into the field
 //                      every N_sync(MH) mechanical steps after the thermal steps, theta += e_abs/(rho c),
 //                      e_abs = 0 (eqs. 3.22-3.23 with erratum E11): set_heat(field, nsync_mh).
+// The scene refers to the body, bonds, model, rule and field (kept by reference) but owns its own
+// state (the last positions, e_abs): an integrator built from a scene (Explicit) keeps a copy, so read
+// that state from the integrator's `scene` member.
 // The model's optional roles (kernel_concepts.hpp) are served here, so that an integrator asks the
 // scene for forces and commits and knows no model or rule by name:
 //   internal_forces(u_old, u, dt, f)  one force evaluation at y = x + u after a step dt [s] from u_old:

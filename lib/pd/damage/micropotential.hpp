@@ -50,6 +50,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -142,12 +143,11 @@ struct CriticalMicropotential {
         work_.volume = b.volume.data();
         work_.ratio = jc_ratio.empty() ? nullptr : jc_ratio.data();
         work_.hourglass = hourglass_work;
-        work_.thermal_increment = nullptr;
-        if (thermal_.active() && !first && theta_old_.size() == b.nodes()) {  // alpha (theta - theta at the last pass)
+        thermal_step_ = thermal_.active() && !first && theta_old_.size() == b.nodes();
+        if (thermal_step_) {  // de = alpha (theta - theta at the last pass); the old force's half of the correction
             increment_.resize(b.nodes());
             for (std::size_t i = 0; i < b.nodes(); ++i) increment_[i] = thermal_.alpha * ((*thermal_.theta)[i] - theta_old_[i]);
-            work_.thermal_increment = increment_.data();
-            for (int a = 0; a < D; ++a) work_.x[a] = x_->c[a].data();
+            thermal_correction(b, y_);
         }
         handed_out_ = true;
         return &work_;
@@ -165,6 +165,8 @@ struct CriticalMicropotential {
             bond_forces(model, b, y, f, bond_work<Model>(b));
         }
         handed_out_ = false;
+        if (thermal_step_) thermal_correction(b, y, true);  // the new force's half, and w_max again
+        thermal_step_ = false;
         y_ = y;
         if (thermal_.active()) theta_old_ = *thermal_.theta;
         if (detach_singular) detached_nodes += mark_singular_nodes(model, b.nodes(), detached);  // also wrappers (.model)
@@ -196,7 +198,41 @@ private:
     std::vector<double> theta_old_;       // temperatures at the last accumulate
     std::vector<double> increment_;       // alpha (theta - theta_old) per node, for the pass [-]
 
+    bool thermal_step_ = false;           // this pass takes the thermal correction
     std::size_t stride() const { return static_cast<std::size_t>(work_.components) + 1; }
+
+    // The thermal part of the step's increment, taken out of w (header): the pass added
+    // 1/2 (g_old + g_new).dY / (beta V) (bond_loop.hpp); this subtracts the same with dY replaced by the
+    // thermal bond displacement de_ij xi, de_ij = (de_i + de_j)/2, one half per call: before the pass with
+    // the stored g_old at the old positions y, after it with g_new at the new ones (then w_max is
+    // recomputed). Ordinary models store g = t (force t Y), so g.xi = t Y.xi. Kept out of the force pass
+    // so that a run without temperature pays nothing.
+    void thermal_correction(const Bonds& b, const Field<D>& y, bool after_pass = false)
+    {
+        const int C = work_.components;
+        const std::size_t st = stride();
+        parallel_for(b.nodes(), [&](std::size_t i) {
+            double wm = std::numeric_limits<double>::lowest();
+            for_family(b, i, [&](std::int64_t k, int j) {
+                if (j < static_cast<int>(i)) return;
+                double* r = rec_.data() + st * static_cast<std::size_t>(k);
+                if (b.intact[k]) {
+                    double gxi = 0, Yxi = 0;
+                    for (int a = 0; a < D; ++a) {
+                        const double xi = x_->c[a][j] - x_->c[a][i];
+                        if (C == 1) Yxi += (y.c[a][j] - y.c[a][i]) * xi;
+                        else gxi += r[a] * xi;
+                    }
+                    if (C == 1) gxi = r[0] * Yxi;
+                    double d = 0.5 * 0.5 * (increment_[i] + increment_[j]) * gxi / b.volume[k];
+                    if (!jc_ratio.empty()) d *= 0.5 * (jc_ratio[i] + jc_ratio[j]);
+                    r[C] -= d;
+                }
+                wm = std::max(wm, r[C]);
+            });
+            if (after_pass) w_max_[i] = wm;
+        });
+    }
     double w_of(std::int64_t k) const { return rec_[stride() * k + work_.components]; }
 };
 

@@ -71,21 +71,10 @@ inline __m256d bond_work_avx2(const BondWork& o, std::size_t i, std::int64_t k0,
     transpose<4>(r, g);
     if (o.y_old[0]) {
         __m256d s = _mm256_setzero_pd();
-        __m256d de = _mm256_setzero_pd();  // thermal increment of the pair (bond_loop.hpp, BondWork)
-        if (o.thermal_increment) {
-            const double* t = o.thermal_increment;
-            de = _mm256_mul_pd(_mm256_set1_pd(0.5), _mm256_add_pd(_mm256_set1_pd(t[i]), _mm256_set_pd(t[jj[3]], t[jj[2]], t[jj[1]], t[jj[0]])));
-        }
         for (int d = 0; d < 3; ++d) {
             const double* yo = o.y_old[d];
             const __m256d Yo = _mm256_sub_pd(_mm256_set_pd(yo[jj[3]], yo[jj[2]], yo[jj[1]], yo[jj[0]]), _mm256_set1_pd(yo[i]));
-            __m256d dY = _mm256_sub_pd(Y[d], Yo);
-            if (o.thermal_increment) {
-                const double* x = o.x[d];
-                const __m256d xi = _mm256_sub_pd(_mm256_set_pd(x[jj[3]], x[jj[2]], x[jj[1]], x[jj[0]]), _mm256_set1_pd(x[i]));
-                dY = _mm256_sub_pd(dY, _mm256_mul_pd(de, xi));  // the mechanical part
-            }
-            s = _mm256_fmadd_pd(_mm256_add_pd(g[d], fk[d]), dY, s);
+            s = _mm256_fmadd_pd(_mm256_add_pd(g[d], fk[d]), _mm256_sub_pd(Y[d], Yo), s);
         }
         __m256d dw = _mm256_div_pd(_mm256_mul_pd(_mm256_set1_pd(0.5), s), _mm256_loadu_pd(o.volume + k0));
         if (o.ratio) {
