@@ -192,10 +192,7 @@ int main(int argc, char** argv)
         fail(e.what());
     }
     cfg.mechanics = mechanics;
-    cfg.heat = {.model = heat.heat, .integrator = heat.integrator, .k = heat.k, .rho_cv = rho * heat.cv, .T0 = heat.T0,
-                .dt = heat.dt, .hourglass = heat.hourglass, .measure = cfg.measure,
-                .correction = pd::parse_thermal_correction(heat.correction), .every = energy_every, .alpha = heat.alpha, .T_ref = heat.T_ref,
-                .nsync_mk = heat.nsync_mk, .source = heat.source};
+    cfg.heat = heat_settings(heat, rho, cfg.measure, energy_every);
     cfg.energy_every = energy_every;
     cfg.vtu_every = vtu_every;
     cfg.s0 = opt.given("s0") ? s0 : 0.0;

@@ -113,6 +113,14 @@ struct HeatSettings {
     double source = 0;            // uniform volumetric source on the free points [W/m^3]
 };
 
+// The settings of the (checked) heat options; rho [kg/m^3], measure and heat.csv cadence as the run's.
+inline HeatSettings heat_settings(const HeatOptions& h, double rho, double measure, long every)
+{
+    return {.model = h.heat, .integrator = h.integrator, .k = h.k, .rho_cv = rho * h.cv, .T0 = h.T0, .dt = h.dt, .hourglass = h.hourglass,
+            .measure = measure, .correction = pd::parse_thermal_correction(h.correction), .every = every, .alpha = h.alpha, .T_ref = h.T_ref,
+            .nsync_mk = h.nsync_mk, .source = h.source};
+}
+
 // The run's temperature field (pd/heat/temperature_field.hpp: the model and integrator of the settings)
 // with the heat guard and heat.csv, both run after every thermal step.
 class HeatRun {
@@ -130,8 +138,7 @@ public:
         std::printf("heat: model %s, integrator %s, held temperatures %zu\n", s.model.c_str(), s.integrator.c_str(),
                     field->conduction().loads().fixed.size());
         const double crit = crit_ = field->critical_step();
-        if (s.nsync_mk > 0) {
-            // set by follow_mechanics once the mechanical step is known
+        if (s.nsync_mk > 0) {  // follow_mechanics sets dt once the mechanical step is known
         } else if (std::isnan(s.dt)) {
             if (!std::isfinite(crit)) fail("option --dt-thermal is required: no free point has a bond within --delta");
             field->dt = thermal_dt_safety * crit;

@@ -80,6 +80,7 @@ TEST(CorrespondenceThermal, LinearFreeExpansionIsStressFree)
             internal_force(th, b, y, f);
             const double scale = max_norm(f_iso);  // the isothermal forces of the same y
             ASSERT_GT(scale, 0);
+            // F = (1 + eps) I to round-off (N K^-1 of the family sums), so both are round-off of F times K.
             EXPECT_LT(max_norm(f), 1e-11 * scale) << "damaged " << damaged << " C_hg " << C_hg;
             EXPECT_LT(max_off(th.sigma, th, 0.0), 1e-10 * p);
         }
@@ -100,7 +101,7 @@ TEST(CorrespondenceThermal, LinearClampedBodyIsUnderTheConstrainedThermalStress)
         EXPECT_LT(max_off(m.sigma, m, -3 * mat.K * eps), 1e-14 * mat.K);  // V7: -3 K alpha dtheta, to F's round-off
         const std::vector<double> W = m.energy_density(b, body.x);            // 9/2 K eps^2, constrained
         for (std::size_t i = 0; i < W.size(); ++i)
-            if (!m.Kinv[i].isZero(0)) {
+            if (!m.Kinv[i].isZero(0)) {  // round-off of F (W is quadratic in the strain)
                 ASSERT_NEAR(W[i], 4.5 * mat.K * eps * eps, 1e-10 * mat.K * eps * eps) << i;
             }
     }
@@ -169,7 +170,7 @@ TEST(CorrespondenceThermal, FlanaganTaylorFreeExpansionKeepsTheUnrotatedStressAt
     const double expected = 3 * mat.K * (sum - e_prev);  // 3 K (ln(1 + e) - e) to O(e^3)
     EXPECT_GT(std::abs(expected), 1e-3 * 3 * mat.K * e_prev);  // the second-order term is resolved
     EXPECT_LT(std::abs(expected), 3 * mat.K * e_prev * e_prev);  // and is O(K eps^2): "stays 0" to that order
-    EXPECT_LT(max_off(m.sigma_hat, m, expected), 1e-9 * 3 * mat.K * e_prev);
+    EXPECT_LT(max_off(m.sigma_hat, m, expected), 1e-9 * 3 * mat.K * e_prev);  // round-off of 20 updates (the sum itself is exact)
     // Without thermal expansion the same motion in one step is under +3 K e/(1 + e/2).
     C3 iso({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
     rate_step(iso, b, body.x, scaled(body, 1 + e_prev), dt);
@@ -216,9 +217,9 @@ TEST(CorrespondenceThermal, PlasticCorrespondenceTakesTheMechanicalStrain)
         Field<3> f;
         internal_force(m, b, free ? scaled(body, 1 + eps) : body.x, f);
         const double s = free ? 0.0 : -3 * mat.K * eps;
-        EXPECT_LT(max_off(m.model.sigma, m.model, s), 1e-10 * 3 * mat.K * eps) << "free " << free;
-        if (free) {
-            EXPECT_LT(max_norm(f), 1e-3 * 3 * mat.K * eps / dx);  // P = J sigma F^-T = 0
+        EXPECT_LT(max_off(m.model.sigma, m.model, s), 1e-10 * 3 * mat.K * eps) << "free " << free;  // round-off of F
+        if (free) {  // P = J sigma F^-T = 0: far below 3 K eps / dx, the force density the thermal stress would leave
+            EXPECT_LT(max_norm(f), 1e-3 * 3 * mat.K * eps / dx);
         }
     }
 }

@@ -52,6 +52,7 @@ void run(Model& model, Bonds& b, CriticalMicropotential<3>& mp, std::vector<doub
         mp.accumulate(model, b, y);
     }
 }
+// Bounds 1e-9 of w below: the trapezoidal rule is exact for the linear PMB law, so only round-off remains.
 // A PMB block with thermal expansion from theta, and a micropotential rule that never breaks.
 struct ThermalPMB {
     Body<3> body = block();
