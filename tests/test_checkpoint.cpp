@@ -2,7 +2,7 @@
 // saved after k steps to a file and resumed by a newly built integrator ends bit for bit where the
 // uninterrupted run ends (displacements, velocities, intact bonds, energies), for bond breaking by
 // critical stretch and by critical micropotential, for a model rebuilt from its bonds (LPS) and for
-// models with history (plastic LPS and PALS, viscoelastic LPS, Flanagan-Taylor and viscoelastic
+// models with history (plastic LPS, PALS and correspondence, viscoelastic LPS, Flanagan-Taylor and viscoelastic
 // correspondence); a CSV file and a timer continue from their state. A damaged or foreign checkpoint is
 // refused with one line.
 #include "pd/core/lattice.hpp"
@@ -10,6 +10,7 @@
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/damage/micropotential.hpp"
 #include "pd/models/lps.hpp"
+#include "pd/models/plastic_correspondence.hpp"
 #include "pd/models/plastic_lps.hpp"
 #include "pd/models/plastic_pals.hpp"
 #include "pd/models/viscoelastic_correspondence.hpp"
@@ -152,6 +153,13 @@ TEST(Checkpoint, PlasticRunRestartsBitForBit)
     expect_restart_identical(make, none, 20.0, "plastic LPS");
     auto make_pals = [&](const Body<3>& body, const Bonds& b) { return PlasticPALS({.material = steel}, body, b, soft); };
     expect_restart_identical(make_pals, none, 20.0, "plastic PALS");
+    // Rate-dependent: a return redone from the committed history would flow again (plastic_correspondence.hpp).
+    const laws::JohnsonCook rate_soft{.A = 5e7, .B = 1e8, .n = 0.5, .C = 0.1, .epdot0 = 1};
+    auto make_corr = [&](const Body<3>& body, const Bonds& b) { return PlasticCorrespondence({.material = steel}, body, b, rate_soft); };
+    expect_restart_identical(make_corr, none, 20.0, "plastic correspondence, rate dependent");
+    CriticalMicropotential<3> micro;  // J_C = 1000 J/m^2: pairs break from step 5 on, before and after the checkpoint
+    micro.w_c = w_critical(1000.0, 3.015 * dx);
+    expect_restart_identical(make_corr, &micro, 20.0, "plastic correspondence, critical micropotential");
     // The history is what makes it a restart: plastic flow happened before the checkpoint.
     const Body<3> body = bar();
     Bonds b = build_bonds(body, 3.015 * dx);

@@ -86,6 +86,32 @@ TEST(MicropotentialThermal, HeatedClampedPMBStoresItsCompressionEnergy)
     }
 }
 
+// Only the nodes with x < 2.5 dx heat: a pair's mechanical stretch is minus the mean of its two ends'
+// thermal strains (PMB), so w = c ((eps_i + eps_j)/2)^2 |xi| / 2: a hot pair, a mixed pair at a quarter
+// of it (the correction of a pair whose lower node stays cold), a cold pair 0.
+TEST(MicropotentialThermal, PartlyHeatedClampedPMBStoresEachPairsMeanThermalStrainEnergy)
+{
+    ThermalPMB p;
+    auto& [body, b, theta, model, mp] = p;
+    auto hot = [&](std::size_t i) { return body.x.c[0][i] < 2.5 * dx; };
+    for (int n = 0; n <= steps; ++n) {
+        for (std::size_t i = 0; i < body.size(); ++i) theta[i] = theta_ref + (hot(i) ? heat * n / steps : 0.0);
+        mp.apply(b);
+        Field<3> f;
+        internal_force(model, b, body.x, f, mp.bond_work<PMB>(b));
+        mp.accumulate(model, b, body.x);
+    }
+    const double c = 18 * mat.K / (std::numbers::pi * std::pow(delta, 4));
+    int mixed = 0;
+    for (std::size_t i = 0; i < body.size(); ++i)
+        for_family(b, i, [&](std::int64_t k, int j) {
+            const double eps = 0.5 * alpha * heat * (double(hot(i)) + double(hot(j))), w = c * eps * eps * b.length[k] / 2;
+            mixed += hot(i) != hot(j);
+            ASSERT_NEAR(mp.work(b, k), w, 1e-9 * c * alpha * heat * alpha * heat * b.length[k]) << k;
+        });
+    EXPECT_GT(mixed, 0);
+}
+
 // The thermal part changes w outside the force pass: the breaking test must see the corrected w.
 TEST(MicropotentialThermal, HeatedClampedPMBBreaksItsLongestBondsWhenTheyReachCritical)
 {

@@ -146,7 +146,14 @@ struct CriticalMicropotential {
         thermal_step_ = thermal_.active() && !first && theta_old_.size() == b.nodes();
         if (thermal_step_) {  // de = alpha (theta - theta at the last pass); the old force's half of the correction
             increment_.resize(b.nodes());
-            for (std::size_t i = 0; i < b.nodes(); ++i) increment_[i] = thermal_.alpha * ((*thermal_.theta)[i] - theta_old_[i]);
+            touched_.assign(b.nodes(), 0);
+            for (std::size_t i = 0; i < b.nodes(); ++i) {
+                increment_[i] = thermal_.alpha * ((*thermal_.theta)[i] - theta_old_[i]);
+                if (increment_[i] != 0) {  // node i and its family have pairs to correct
+                    touched_[i] = 1;
+                    for_family(b, i, [&](std::int64_t, int j) { touched_[j] = 1; });
+                }
+            }
             thermal_correction(b, y_);
         }
         handed_out_ = true;
@@ -197,6 +204,7 @@ private:
     const Field<D>* x_ = nullptr;         // reference positions (thermal expansion) [m]
     std::vector<double> theta_old_;       // temperatures at the last accumulate
     std::vector<double> increment_;       // alpha (theta - theta_old) per node, for the pass [-]
+    std::vector<std::uint8_t> touched_;   // 1: the node or one of its family has a non-zero increment
 
     bool thermal_step_ = false;           // this pass takes the thermal correction
     std::size_t stride() const { return static_cast<std::size_t>(work_.components) + 1; }
@@ -206,12 +214,14 @@ private:
     // thermal bond displacement de_ij xi, de_ij = (de_i + de_j)/2, one half per call: before the pass with
     // the stored g_old at the old positions y, after it with g_new at the new ones (then w_max is
     // recomputed). Ordinary models store g = t (force t Y), so g.xi = t Y.xi. Kept out of the force pass
-    // so that a run without temperature pays nothing.
+    // so that a run without temperature pays nothing; only the families with a pair whose temperature
+    // changed are read (in a run heated by plastic work: the plastic zone and one horizon around it).
     void thermal_correction(const Bonds& b, const Field<D>& y, bool after_pass = false)
     {
         const int C = work_.components;
         const std::size_t st = stride();
         parallel_for(b.nodes(), [&](std::size_t i) {
+            if (!touched_[i]) return;  // no pair of node i changed temperature: nothing to take out, w_max as the pass left it
             double wm = std::numeric_limits<double>::lowest();
             for_family(b, i, [&](std::int64_t k, int j) {
                 if (j < static_cast<int>(i)) return;

@@ -302,6 +302,18 @@ struct Correspondence {
         else stress_pass<false>(b, y);
     }
 
+    // After a point pass: P = J sigma F^-T, P K^-1 and the i-end forces again from sigma as a caller
+    // has set it since, F as the pass left it (Law::flanagan_taylor; the plasticity wrapper sets sigma
+    // from F by its return, and this spares it a second family traversal). Bit for bit what a second
+    // point_pass at the same y gives.
+    void stress_from_sigma()
+    {
+        if (par.law != Law::flanagan_taylor) throw std::logic_error("Correspondence::stress_from_sigma: the given-stress law only");
+        parallel_for(F.size(), [&](std::size_t i) {
+            if (!Kinv[i].isZero(0)) node_stress_at_F(i);
+        });
+    }
+
     // The bond kernel (models/correspondence_kernel.hpp), with the hourglass term compiled in or out.
     template <bool Hourglass, bool AlongBond = false>
     using Kernel = CorrespondenceKernel<D, Hourglass, AlongBond>;
@@ -531,6 +543,11 @@ private:
             return;
         }
         F[i] = N * Kinv[i];
+        node_stress_at_F(i);
+    }
+    // The stress law at F[i], P K^-1 and the i-end force of node i (K^-1 regular).
+    void node_stress_at_F(std::size_t i)
+    {
         if (par.law == Law::linear) {
             sigma[i] = linear_stress(F[i]);
             if (thermal.active()) sigma[i].diagonal().array() -= thermal_pressure(i);

@@ -1,15 +1,16 @@
 // pd/models/plastic_correspondence.hpp -- correspondence J2 / Johnson-Cook plasticity (spec/000b
 // sec. 2.1, 2.3, 2.7), a wrapper around Correspondence<3> (models/correspondence.hpp; public
-// members point_pass, F, sigma, with_kernel, bond_force only).
+// members point_pass, stress_from_sigma, F, sigma, with_kernel, bond_force only).
 // Kinematics (documented choice): small-strain TOTAL form, history = committed plastic strain
 // tensor eps_p and ep per node (laws/j2.hpp j2_strain_update):
 //   eps = sym(F) - I,  sigma_trial = K tr(eps) I + 2 G dev(eps - eps_p_c),  radial return (5.15)-(5.21),
 //   eps_p = eps_p_c + dl 3 s_trial/(2 sigma_eff_trial),  ep = ep_c + dl.
 // The Cauchy stress sigma of the return is handed to the wrapped model (Law::flanagan_taylor, whose
 // point_pass maps a given sigma to P = J sigma F^-T, P K^-1 and the bond forces); so each
-// point_pass runs the model's point pass twice: once for F, once for P after the return. At
-// small strain P = sigma (1 + O(eps)). Not objective under large rotations (small-strain form;
-// the source's Flanagan-Taylor variant would be, sec. 2.7); the T6 bar has no rotation.
+// point_pass runs the model's point pass for F, then, after the return, model.stress_from_sigma for P
+// (no second family traversal). At small strain P = sigma (1 + O(eps)). Not objective under large
+// rotations (small-strain form; the source's Flanagan-Taylor variant would be, sec. 2.7); the T6 bar
+// has no rotation.
 // Thermal expansion (set_thermal_expansion, models/thermal_expansion.hpp): eps less the free thermal
 // strain eps_i I of node i, the total-form equivalent of spec/000a eq. 2.81.
 // Hourglass control (C_hg) acts as in the elastic model. History protocol: plastic_points.hpp.
@@ -26,6 +27,7 @@
 #include "pd/models/thermal_expansion.hpp"
 
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace pd {
@@ -62,6 +64,24 @@ struct PlasticCorrespondence {
         pts.commit();
     }
 
+    // Its part of a checkpoint (core/state_archive.hpp): the committed and trial plastic history and the
+    // stress of the last point pass; rebuild() then redoes the wrapped model's pass (F, P from that
+    // stress), not the return, which from the committed history would take the step's flow again.
+    void state(StateArchive& ar)
+    {
+        for (auto* h : {&hist_c, &hist}) {
+            const std::string name = h == &hist_c ? "plastic_correspondence.committed" : "plastic_correspondence.trial";
+            std::vector<laws::Mat3> eps_p(h->size());
+            std::vector<double> ep(h->size());
+            for (std::size_t i = 0; i < h->size(); ++i) eps_p[i] = (*h)[i].eps_p, ep[i] = (*h)[i].ep;
+            ar.blocks(name + ".eps_p", eps_p), ar(name + ".ep", ep);
+            for (std::size_t i = 0; i < h->size(); ++i) (*h)[i] = {eps_p[i], ep[i]};
+        }
+        ar.blocks("plastic_correspondence.sigma", model.sigma);
+        pts.state(ar);
+    }
+    void rebuild(const Bonds& b, const Field<3>& y) { model.point_pass(b, y); }
+
     // Trial state at y from the committed history (header).
     // The trial state over a step dt [s] (HistoryModel, kernel_concepts.hpp); without dt: the last step given.
     void point_pass(const Bonds& b, const Field<3>& y, double dt)
@@ -86,7 +106,7 @@ struct PlasticCorrespondence {
                 pts.record(i, r);
             }
         });
-        model.point_pass(b, y);  // P = J sigma F^-T, P K^-1 at y
+        model.stress_from_sigma();  // P = J sigma F^-T, P K^-1 at y
     }
 
     // Stored (elastic) energy density 1/2 sigma : (eps - eps_p) [J/m^3] (trial eps_p), call after
