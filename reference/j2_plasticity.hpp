@@ -9,6 +9,15 @@
 //                       q_trial) (5.18)-(5.19), eps_p += dl 3 s_trial / (2 q_trial) (5.9);
 //   uniaxial_j2_stress  the stress of a uniaxial bar at total strain eps, rate-independent: E eps
 //                       below A, else the root of sigma/E + ((sigma - A)/B)^(1/n) = eps.
+//   adiabatic_uniaxial_jc  a uniform bar in uniaxial stress pulled at the constant axial strain rate
+//                       `rate` with Johnson-Cook rate and temperature dependence, heated by beta of its
+//                       plastic work, no conduction (the Hopkinson gauge before necking, spec/000c
+//                       sec. 3.2): eps = sigma/E + ep + alpha (theta - theta_0), sigma = sigma_y(ep,
+//                       dep/dt, theta) while it flows, rho c dtheta = beta sigma dep; lateral strain
+//                       eps_t = -nu sigma/E - ep/2 + alpha (theta - theta_0); the force per reference
+//                       area of the small-strain total form with y = F x, F = diag(1 + eps, 1 + eps_t,
+//                       1 + eps_t): P = J sigma F^-T, P_xx = (1 + eps_t)^2 sigma. S equal strain steps,
+//                       each solved for dep by bisection with theta of the step's start (explicit heat).
 // Both roots by plain bisection (no Newton: nothing shared with laws/j2.hpp), to the last bit and to
 // 1e-15 relative respectively.
 #pragma once
@@ -17,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace pd::ref {
 
@@ -72,6 +82,47 @@ inline double uniaxial_j2_stress(double E, const Hardening& h, double eps)
 {
     if (!(E * eps > h.A)) return E * eps;
     return bisect(h.A, E * eps, [&](double s) { return !(s / E + std::pow((s - h.A) / h.B, 1 / h.n) > eps); }, 1e-15);
+}
+
+struct Softening {  // Johnson-Cook temperature factor 1 - theta*^m; m = 0: none
+    double m = 0, theta_ref = 0, theta_melt = 1;
+    double factor(double theta) const
+    {
+        if (m == 0) return 1;
+        const double ts = (theta - theta_ref) / (theta_melt - theta_ref);
+        return ts <= 0 ? 1.0 : ts >= 1 ? 0.0 : 1 - std::pow(ts, m);
+    }
+};
+
+struct UniaxialState {
+    double eps = 0, sigma = 0, P = 0, ep = 0, theta = 0;  // [-], [Pa], [Pa], [-], [as theta_0]
+};
+
+// States after each of the S steps from 0 to eps_end (header); theta_0 the start temperature.
+inline std::vector<UniaxialState> adiabatic_uniaxial_jc(double E, double nu, const Hardening& h, const Softening& soft, double beta,
+                                                        double rho_c, double alpha, double theta_0, double rate, double eps_end, int S)
+{
+    std::vector<UniaxialState> out;
+    UniaxialState s{0, 0, 0, 0, theta_0};
+    const double dt = eps_end / rate / S;
+    auto flow = [&](double ep, double dep, double theta) {
+        const double r = std::max(dep / dt, 1e-3 * h.epdot0);
+        return (h.A + h.B * std::pow(ep, h.n)) * std::max(0.0, 1 + h.C * std::log(r / h.epdot0)) * soft.factor(theta);
+    };
+    for (int k = 1; k <= S; ++k) {
+        const double eps = eps_end * k / S, thermal = alpha * (s.theta - theta_0);
+        const double trial = E * (eps - s.ep - thermal);
+        double dep = 0;
+        if (trial > flow(s.ep, 0, s.theta))
+            dep = bisect(0, trial / E, [&](double x) { return E * (eps - s.ep - x - thermal) - flow(s.ep + x, x, s.theta) > 0; });
+        s.eps = eps, s.ep += dep;
+        s.sigma = E * (eps - s.ep - thermal);
+        s.theta += beta * s.sigma * dep / rho_c;
+        const double eps_t = -nu * s.sigma / E - 0.5 * s.ep + alpha * (s.theta - theta_0);
+        s.P = (1 + eps_t) * (1 + eps_t) * s.sigma;
+        out.push_back(s);
+    }
+    return out;
 }
 
 }  // namespace pd::ref
