@@ -256,3 +256,34 @@ TEST(Correspondence, CheckerboardZeroEnergyModeAndHourglassControl)
     EXPECT_LT(W_max, 1e-12 * W_ref);
     EXPECT_GT(f1_min, 0.0);
 }
+
+// The damaged point pass forms K and m again only for the families whose intact flags changed since
+// it last formed them, and keeps them elsewhere: after pairs of the centre node break between two
+// passes, every node's K^-1, m, F and P equal (bit for bit) those of a model built on the damaged bonds.
+TEST(Correspondence, DamagedPassReformsTheShapeTensorsOfChangedFamiliesOnly)
+{
+    const Body<3> body = box<3>({{0, 0, 0}}, {{6 * dx, 6 * dx, 6 * dx}}, dx);
+    Bonds b = build_bonds(body, m_ratio * dx);
+    b.enable_damage();
+    std::mt19937 gen(7);
+    const Field<3> y = affine<3>(body, random_matrix(gen, 1e-3), Eigen::Vector3d::Zero());
+    Correspondence<3> model({.material = steel}, body, b);
+    model.point_pass(b, y);
+    const int c = 3 + 6 * (3 + 6 * 3);
+    int q = 0;
+    for_family(b, c, [&](std::int64_t k, int) { if (q++ % 3 == 0) b.break_pair(k); });
+    model.point_pass(b, y);
+    Correspondence<3> fresh({.material = steel}, body, b);
+    fresh.point_pass(b, y);
+    int changed = 0;
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        ASSERT_TRUE(model.Kinv[i] == fresh.Kinv[i]) << i;
+        ASSERT_TRUE(model.F[i] == fresh.F[i]) << i;
+        ASSERT_TRUE(model.P[i] == fresh.P[i]) << i;
+        for (int d = 0; d < 3; ++d) ASSERT_EQ(model.m_xi.c[d][i], fresh.m_xi.c[d][i]) << i;
+        Correspondence<3> intact_model({.material = steel}, body, build_bonds(body, m_ratio * dx));
+        changed += i == static_cast<std::size_t>(c) || !(intact_model.Kinv[i] == model.Kinv[i]);
+        if (changed > 1) break;  // the centre and at least one partner differ from the intact K
+    }
+    EXPECT_GT(changed, 1);
+}

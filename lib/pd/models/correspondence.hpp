@@ -133,6 +133,11 @@ struct Correspondence {
     std::vector<std::uint8_t> block_read;  // per node: read by the per-node kernels of an undamaged pass
     std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
     static constexpr int BS = detail::correspondence_block;  // doubles per node block (24)
+    // The intact flags of each family when the damaged point pass last formed its K and m (per bond; 2:
+    // never), and the Bonds they belong to: a family whose flags are unchanged keeps its K^-1 and m,
+    // and the pass sums N only (bit for bit the same K^-1, m and N as summing all three again).
+    std::vector<std::uint8_t> intact_seen_;
+    const int* seen_partners_ = nullptr;
     // Chunks of translated families (translated_families.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
     // the bond pass and the deformation sums take W nodes at once (correspondence_chunks.hpp), reading
     // A = P K^-1 and F from `soa` (18 arrays of soa_n doubles, written by point_pass).
@@ -291,7 +296,8 @@ struct Correspondence {
     Mat svk_stress(const Mat& Fi) const { return laws::lame_stress(laws::green_lagrange(Fi), lambda, par.material.G); }
     Mat linear_stress(const Mat& Fi) const { return laws::lame_stress(laws::small_strain(Fi), lambda, par.material.G); }
 
-    // K^-1 (after damage, in the same pass over the bonds as F), F, then P and P K^-1.
+    // K^-1 (after damage, in the same pass over the bonds as F, for the families whose intact flags changed
+    // since it was last formed), F, then P and P K^-1.
     // Law::linear: P = sigma(F). Law::saint_venant_kirchhoff: P = F S, sigma = P F^T / J.
     // Law::flanagan_taylor: P = J sigma F^-T with the sigma of the last update_stress.
     template <int Dy>
@@ -497,14 +503,29 @@ private:
             }
 #endif
         blocks_partial = matrices_partial = false;  // node_stress below writes every block and matrix
+        if constexpr (Damaged)
+            if (!(intact_seen_.size() == b.size() && seen_partners_ == b.partner.data())) {
+                intact_seen_.assign(b.size(), 2);  // matches no intact flag: every K is computed once
+                seen_partners_ = b.partner.data();
+            }
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
-            if constexpr (fast) N = this->deformation_sum(b, i);  // this->: dependent, so a build without AVX2 never looks it up
-            else family_sums<Damaged, Damaged, 1>(b, i, {&y}, &N, &K, &m);
-            if constexpr (Damaged) {
-                Kinv[i] = inverse_or_zero(K);
-                for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
+            if constexpr (fast) {
+                N = this->deformation_sum(b, i);  // this->: dependent, so a build without AVX2 never looks it up
+            } else if constexpr (Damaged) {
+                const auto first = b.intact.begin() + b.begin(i), last = b.intact.begin() + b.end(i);
+                const auto seen = intact_seen_.begin() + b.begin(i);
+                if (std::equal(first, last, seen)) {  // the family is as when K was last formed: N only
+                    family_sums<true, false, 1>(b, i, {&y}, &N, nullptr, nullptr);
+                } else {
+                    family_sums<true, true, 1>(b, i, {&y}, &N, &K, &m);
+                    Kinv[i] = inverse_or_zero(K);
+                    for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
+                    std::copy(first, last, seen);
+                }
+            } else {
+                family_sums<false, false, 1>(b, i, {&y}, &N, nullptr, nullptr);
             }
             node_stress(i, N);
         });
