@@ -179,6 +179,9 @@ static int run_case(int argc, char** argv)
                           {"T_max_rupture", val(t_break, &Sample::T_line), 375, pd::io::relative_error(val(t_break, &Sample::T_line), 375), "C"}});
     run.summary({{"us_per_node_step", us_per_node_step, 84.1, NAN, "us"},
                  {"nodes", double(N), 71256, NAN, "-"},
+                 {"threads", double(pd::max_threads()), NAN, NAN, "-"},
+                 {"cells_across_gauge", std::round(par.shape.gauge_width / hs.d.hy), NAN, NAN, "-"},
+                 {"cells_through_thickness", std::round(par.shape.thickness / hs.d.hz), NAN, NAN, "-"},
                  {"steps", double(hs.ex.step_count), 9432, NAN, "-"},
                  {"wall", wall, 7065, NAN, "s"}});
     run.property(!unstable, "the run stays stable");
