@@ -1,16 +1,17 @@
 // problems/3d/hopkinson_tension.cpp -- dynamic tension of a 316L dog-bone in a split Hopkinson bar,
-// strongly coupled thermo-mechanics (Biondani 2018 sec. 9.1; spec/000c sec. 3, Tables 9.1-9.4, V14, V15).
+// strongly coupled thermo-mechanics (Biondani 2018 sec. 9.1; spec/000c sec. 3, Tables 9.1-9.4, V15, V18).
 // The scene (specimen, constraints, physics, measurements) is problems/common/hopkinson_scene.hpp.
 // Events: necking onset = the maximum of the end force averaged over +-5 us (Considere); fracture start
 // = first node of the damage block with damage >= 0.5; fracture end = separation, the first sample at
 // which no chain of intact bonds joins the two constraint layers. The run ends --after-separation
 // (1 us) later, or at --t-end: at delta = 1 mm the fragments of the fracture zone (heated past melting,
 // detached by the singular-node rule) reached km/s within 2 us of the separation and the run diverged,
-// so nothing after it is kept (page: reports/3d/hopkinson_tension.md). Reference before necking (reference/j2_plasticity.hpp, no library code): a uniform
-// adiabatic Johnson-Cook bar in uniaxial stress at the imposed rate, its force per reference area P at
-// the measured gauge strain and its temperature at the measured local strain of the centreline's
-// middle node, compared with the averaged engineering stress and the mid-section mean temperature at
-// 44, 77 and 110 us. Published: Table 9.1 (experiment) and sec. 9.1.3 (the thesis' PD run at 1 mm).
+// so nothing after it is kept (page: reports/3d/hopkinson_tension.md).
+// Reference before necking (reference/j2_plasticity.hpp, no library code): a uniform adiabatic
+// Johnson-Cook bar in uniaxial stress at the imposed rate, its force per reference area P at the
+// measured gauge strain and its temperature at the measured local strain of the centreline's middle
+// node, compared with the averaged engineering stress and the mid-section mean temperature at 44, 77
+// and 110 us. Published: Table 9.1 (experiment) and sec. 9.1.3 (the thesis' PD run at 1 mm).
 // Run: hopkinson_tension_3d [--delta 1e-3] [--t-end 250e-6] [--conduction off|on] [--nsync-mk 1]
 //   [--nsync-mh 1] [--quick] [--check] [--out DIR] (--help: all).
 // Writes: history.csv (samples), centreline.csv (profiles at --profile-times), curve.csv (stress and
