@@ -435,13 +435,17 @@ struct Correspondence {
         static_assert(Dy == 3 && D == 3, "Flanagan-Taylor is written for 3D");
         const double K = par.material.K, G = par.material.G;
         const bool damaged = b.has_damage();
+        if (damaged) track_families(b);
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N[2], Ks;                                         // F K, Fdot K, K over intact bonds
             Col m;
-            if (damaged) {
+            if (damaged && family_unchanged(b, i)) {  // K^-1 and m as last formed
+                family_sums<true, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
+            } else if (damaged) {
                 family_sums<true, true, 2>(b, i, {&y, &v}, N, &Ks, &m);
                 Kinv[i] = inverse_or_zero(Ks);
                 for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
+                formed(b, i);
             } else {
                 family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
             }
@@ -460,6 +464,24 @@ struct Correspondence {
 
 private:
     ThermalExpansion thermal;  // header; inactive by default (set_thermal_expansion)
+
+    // The shape-tensor reuse of the damaged passes (intact_seen_): track_families sizes the record for
+    // these bonds, family_unchanged says whether node i's K^-1 and m were formed from its present intact
+    // flags, formed records them (each node writes only its own family's range: thread-safe).
+    void track_families(const Bonds& b)
+    {
+        if (intact_seen_.size() == b.size() && seen_partners_ == b.partner.data()) return;
+        intact_seen_.assign(b.size(), 2);  // matches no intact flag: every K is formed once
+        seen_partners_ = b.partner.data();
+    }
+    bool family_unchanged(const Bonds& b, std::size_t i) const
+    {
+        return std::equal(b.intact.begin() + b.begin(i), b.intact.begin() + b.end(i), intact_seen_.begin() + b.begin(i));
+    }
+    void formed(const Bonds& b, std::size_t i)
+    {
+        std::copy(b.intact.begin() + b.begin(i), b.intact.begin() + b.end(i), intact_seen_.begin() + b.begin(i));
+    }
 #ifdef PD_CHUNK_WIDTH
     detail::ChunkThermal chunk_thermal() const
     {
@@ -503,26 +525,20 @@ private:
             }
 #endif
         blocks_partial = matrices_partial = false;  // node_stress below writes every block and matrix
-        if constexpr (Damaged)
-            if (!(intact_seen_.size() == b.size() && seen_partners_ == b.partner.data())) {
-                intact_seen_.assign(b.size(), 2);  // matches no intact flag: every K is computed once
-                seen_partners_ = b.partner.data();
-            }
+        if constexpr (Damaged) track_families(b);
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
             if constexpr (fast) {
                 N = this->deformation_sum(b, i);  // this->: dependent, so a build without AVX2 never looks it up
             } else if constexpr (Damaged) {
-                const auto first = b.intact.begin() + b.begin(i), last = b.intact.begin() + b.end(i);
-                const auto seen = intact_seen_.begin() + b.begin(i);
-                if (std::equal(first, last, seen)) {  // the family is as when K was last formed: N only
+                if (family_unchanged(b, i)) {  // the family is as when K was last formed: N only
                     family_sums<true, false, 1>(b, i, {&y}, &N, nullptr, nullptr);
                 } else {
                     family_sums<true, true, 1>(b, i, {&y}, &N, &K, &m);
                     Kinv[i] = inverse_or_zero(K);
                     for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
-                    std::copy(first, last, seen);
+                    formed(b, i);
                 }
             } else {
                 family_sums<false, false, 1>(b, i, {&y}, &N, nullptr, nullptr);
