@@ -286,7 +286,8 @@ TEST(Correspondence, DamagedPassReformsTheShapeTensorsOfChangedFamiliesOnly)
 }
 
 // The same reuse in the Flanagan-Taylor update of a damaged body: after pairs of the centre node break
-// between two updates, every node's K^-1 and m equal those of a model built on the damaged bonds.
+// between two updates, every node's K^-1 and m equal those of a model built on the damaged bonds and
+// updated once.
 TEST(Correspondence, FlanaganTaylorDamagedUpdateReformsTheShapeTensorsOfChangedFamiliesOnly)
 {
     using C3 = Correspondence<3>;
@@ -302,7 +303,8 @@ TEST(Correspondence, FlanaganTaylorDamagedUpdateReformsTheShapeTensorsOfChangedF
     int q = 0;
     for_family(b, c, [&](std::int64_t k, int) { if (q++ % 3 == 0) b.break_pair(k); });
     model.update_stress(b, y, v, 1e-8);
-    const C3 fresh({.material = steel, .law = C3::Law::flanagan_taylor}, body, b);
+    C3 fresh({.material = steel, .law = C3::Law::flanagan_taylor}, body, b);
+    fresh.update_stress(b, y, v, 1e-8);  // K formed by the same pass (another pass may round differently)
     const C3 intact_model({.material = steel, .law = C3::Law::flanagan_taylor}, body, build_bonds(body, m_ratio * dx));
     EXPECT_FALSE(intact_model.Kinv[c] == model.Kinv[c]);
     for (std::size_t i = 0; i < body.size(); ++i) {

@@ -133,9 +133,10 @@ struct Correspondence {
     std::vector<std::uint8_t> block_read;  // per node: read by the per-node kernels of an undamaged pass
     std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
     static constexpr int BS = detail::correspondence_block;  // doubles per node block (24)
-    // The intact flags of each family when the damaged point pass last formed its K and m (per bond; 2:
-    // never), and the Bonds they belong to: a family whose flags are unchanged keeps its K^-1 and m,
-    // and the pass sums N only (bit for bit the same K^-1, m and N as summing all three again).
+    // The intact flags of each family when a damaged pass (point pass or Flanagan-Taylor update) last
+    // formed its K and m (per bond; 2: never), and the Bonds they belong to: a family whose flags are
+    // unchanged keeps its K^-1 and m, and the pass sums N only. The kept K^-1 is the one the forming pass
+    // summed; another pass may round its sums differently in the last bit (compiler contractions).
     std::vector<std::uint8_t> intact_seen_;
     const int* seen_partners_ = nullptr;
     // Chunks of translated families (translated_families.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
