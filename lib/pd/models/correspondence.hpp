@@ -43,7 +43,9 @@
 // i-end force P_i K_i^-1 sum_j omega xi V_j is summed once per node (node_force); the bond kernel
 // reads P_j K_j^-1 and F_j (18 values per bond). 3D with AVX2/FMA: vectorised within the bond
 // (correspondence_simd.hpp, `blocks`); undamaged, nodes with translated families (translated_families.hpp)
-// take both passes W at a time (correspondence_chunks.hpp, `soa`).
+// take both passes W at a time (correspondence_chunks.hpp, `soa`). Damaged: K and m are formed again
+// only for the families whose intact flags changed (ShapeTensorRecord, shape_tensor.hpp). The rate
+// form's member definitions are in correspondence_rate_form.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
@@ -133,12 +135,9 @@ struct Correspondence {
     std::vector<std::uint8_t> block_read;  // per node: read by the per-node kernels of an undamaged pass
     std::vector<double, Aligned64> xpad, ypad;  // x [m] (set-up) and y [m] (point_pass), 4-padded per node (3D)
     static constexpr int BS = detail::correspondence_block;  // doubles per node block (24)
-    // The intact flags of each family when a damaged pass (point pass or Flanagan-Taylor update) last
-    // formed its K and m (per bond; 2: never), and the Bonds they belong to: a family whose flags are
-    // unchanged keeps its K^-1 and m, and the pass sums N only. The kept K^-1 is the one the forming pass
-    // summed; another pass may round its sums differently in the last bit (compiler contractions).
-    std::vector<std::uint8_t> intact_seen_;
-    const int* seen_partners_ = nullptr;
+    // The families whose K and m a damaged pass (point pass or Flanagan-Taylor update) formed, and from
+    // which intact flags: an unchanged family keeps its K^-1 and m, the pass sums N only (shape_tensor.hpp).
+    ShapeTensorRecord k_formed_;
     // Chunks of translated families (translated_families.hpp; 3D with AVX2 or AVX-512, undamaged scenes):
     // the bond pass and the deformation sums take W nodes at once (correspondence_chunks.hpp), reading
     // A = P K^-1 and F from `soa` (18 arrays of soa_n doubles, written by point_pass).
@@ -409,80 +408,20 @@ struct Correspondence {
     bool rate_form() const { return par.law == Law::flanagan_taylor; }
     // Back to the reference state of the rate form (sigma_hat = sigma = 0, R = V = I): after Peridigm's
     // first evaluation (scene.hpp, RateFormPairing::initial_velocity_step).
-    void reset_rate_state()
-    {
-        std::fill(sigma_hat.begin(), sigma_hat.end(), Mat::Zero());
-        std::fill(sigma.begin(), sigma.end(), Mat::Zero());
-        std::fill(R.begin(), R.end(), Mat::Identity());
-        std::fill(V.begin(), V.end(), Mat::Identity());
-        std::fill(theta_n.begin(), theta_n.end(), thermal.theta_ref);
-    }
+    void reset_rate_state();
     // The rate form's history for a checkpoint (core/state_archive.hpp): sigma_hat, R, V and the
     // sigma of the last update (and theta^n with thermal expansion); a point pass at the restored
     // positions then rebuilds F and P.
-    void rate_state(StateArchive& ar)
-    {
-        ar.blocks("correspondence.sigma_hat", sigma_hat), ar.blocks("correspondence.R", R), ar.blocks("correspondence.V", V);
-        ar.blocks("correspondence.sigma", sigma);
-        if (!theta_n.empty()) ar("correspondence.theta_n", theta_n);
-    }
-
+    void rate_state(StateArchive& ar);
     // Flanagan-Taylor update (3D): from F at y and Fdot at v, advance R, V, sigma_hat by dt [s]
     // and set sigma = R sigma_hat R^T (laws/flanagan_taylor.hpp; 000b sec. 1.5 [CODE] steps 1-8), with
     // the thermal strain increment alpha (theta - theta^n) of the temperatures now (header).
     template <int Dy>
-    void update_stress(const Bonds& b, const Field<Dy>& y, const Field<Dy>& v, double dt)
-    {
-        static_assert(Dy == 3 && D == 3, "Flanagan-Taylor is written for 3D");
-        const double K = par.material.K, G = par.material.G;
-        const bool damaged = b.has_damage();
-        if (damaged) track_families(b);
-        parallel_for(b.nodes(), [&](std::size_t i) {
-            Mat N[2], Ks;                                         // F K, Fdot K, K over intact bonds
-            Col m;
-            if (damaged && family_unchanged(b, i)) {  // K^-1 and m as last formed
-                family_sums<true, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
-            } else if (damaged) {
-                family_sums<true, true, 2>(b, i, {&y, &v}, N, &Ks, &m);
-                Kinv[i] = inverse_or_zero(Ks);
-                for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
-                formed(b, i);
-            } else {
-                family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
-            }
-            double d_eps_th = 0;
-            if (!theta_n.empty()) {  // thermal expansion: theta^n -> theta^(n+1), also where K is singular
-                const double th = (*thermal.theta)[i];
-                d_eps_th = thermal.alpha * (th - theta_n[i]);
-                theta_n[i] = th;
-            }
-            if (Kinv[i].isZero(0)) return;
-            F[i] = N[0] * Kinv[i];
-            sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], K, G, dt,  // step 1: Fdot = N[1] K^-1
-                                                  par.rotation, d_eps_th);
-        });
-    }
+    void update_stress(const Bonds& b, const Field<Dy>& y, const Field<Dy>& v, double dt);
 
 private:
     ThermalExpansion thermal;  // header; inactive by default (set_thermal_expansion)
 
-    // The shape-tensor reuse of the damaged passes (intact_seen_): track_families sizes the record for
-    // these bonds, family_unchanged says whether node i's K^-1 and m were formed from its present intact
-    // flags, formed records them (each node writes only its own family's range: thread-safe).
-    void track_families(const Bonds& b)
-    {
-        if (intact_seen_.size() == b.size() && seen_partners_ == b.partner.data()) return;
-        intact_seen_.assign(b.size(), 2);  // matches no intact flag: every K is formed once
-        seen_partners_ = b.partner.data();
-    }
-    bool family_unchanged(const Bonds& b, std::size_t i) const
-    {
-        return std::equal(b.intact.begin() + b.begin(i), b.intact.begin() + b.end(i), intact_seen_.begin() + b.begin(i));
-    }
-    void formed(const Bonds& b, std::size_t i)
-    {
-        std::copy(b.intact.begin() + b.begin(i), b.intact.begin() + b.end(i), intact_seen_.begin() + b.begin(i));
-    }
 #ifdef PD_CHUNK_WIDTH
     detail::ChunkThermal chunk_thermal() const
     {
@@ -526,20 +465,20 @@ private:
             }
 #endif
         blocks_partial = matrices_partial = false;  // node_stress below writes every block and matrix
-        if constexpr (Damaged) track_families(b);
+        if constexpr (Damaged) k_formed_.track(b);
         parallel_for(b.nodes(), [&](std::size_t i) {
             Mat N, K;
             Col m;
             if constexpr (fast) {
                 N = this->deformation_sum(b, i);  // this->: dependent, so a build without AVX2 never looks it up
             } else if constexpr (Damaged) {
-                if (family_unchanged(b, i)) {  // the family is as when K was last formed: N only
+                if (k_formed_.unchanged(b, i)) {  // the family is as when K was last formed: N only
                     family_sums<true, false, 1>(b, i, {&y}, &N, nullptr, nullptr);
                 } else {
                     family_sums<true, true, 1>(b, i, {&y}, &N, &K, &m);
                     Kinv[i] = inverse_or_zero(K);
                     for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
-                    formed(b, i);
+                    k_formed_.formed(b, i);
                 }
             } else {
                 family_sums<false, false, 1>(b, i, {&y}, &N, nullptr, nullptr);
@@ -643,3 +582,5 @@ private:
 };
 
 }  // namespace pd
+
+#include "pd/models/correspondence_rate_form.hpp"  // the rate form's member definitions

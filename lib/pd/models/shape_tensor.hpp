@@ -19,9 +19,11 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace pd {
 
@@ -45,6 +47,31 @@ Mat inverse_or_zero(const Mat& K)
     const double det = K.determinant();
     return scale > 0 && std::abs(det) > singular_K_tolerance * std::pow(scale, D) ? Mat(K.inverse()) : Mat::Zero();
 }
+
+// Which families' K a pass formed, and from which intact flags (the shape-tensor reuse of the damaged
+// correspondence passes): track(b) sizes the record for these bonds (2 per bond: never formed; reset
+// when the Bonds change), unchanged(b, i) says whether node i's K was formed from its present intact
+// flags, formed(b, i) records them (each node writes only its own family's range: thread-safe). A kept
+// K^-1 is the one its forming pass summed; another pass may round in the last bit (contractions).
+struct ShapeTensorRecord {
+    std::vector<std::uint8_t> flags;
+    const int* partners = nullptr;
+
+    void track(const Bonds& b)
+    {
+        if (flags.size() == b.size() && partners == b.partner.data()) return;
+        flags.assign(b.size(), 2);  // matches no intact flag: every K is formed once
+        partners = b.partner.data();
+    }
+    bool unchanged(const Bonds& b, std::size_t i) const
+    {
+        return std::equal(b.intact.begin() + b.begin(i), b.intact.begin() + b.end(i), flags.begin() + b.begin(i));
+    }
+    void formed(const Bonds& b, std::size_t i)
+    {
+        std::copy(b.intact.begin() + b.begin(i), b.intact.begin() + b.end(i), flags.begin() + b.begin(i));
+    }
+};
 
 // K_i over the intact bonds of i, summed in family order, from the reference positions x [m^(D+2)].
 template <int D>

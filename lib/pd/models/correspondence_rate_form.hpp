@@ -1,0 +1,62 @@
+// pd/models/correspondence_rate_form.hpp -- the rate form of the correspondence model (Law::flanagan_taylor,
+// models/rate_form.hpp): the definitions of Correspondence<D>::reset_rate_state, rate_state and
+// update_stress, declared and described in models/correspondence.hpp (which includes this file at its
+// end). The hypo-elastic update itself is laws/flanagan_taylor.hpp.
+#pragma once
+#include "pd/models/correspondence.hpp"
+
+namespace pd {
+
+template <int D>
+void Correspondence<D>::reset_rate_state()
+{
+    std::fill(sigma_hat.begin(), sigma_hat.end(), Mat::Zero());
+    std::fill(sigma.begin(), sigma.end(), Mat::Zero());
+    std::fill(R.begin(), R.end(), Mat::Identity());
+    std::fill(V.begin(), V.end(), Mat::Identity());
+    std::fill(theta_n.begin(), theta_n.end(), thermal.theta_ref);
+}
+
+template <int D>
+void Correspondence<D>::rate_state(StateArchive& ar)
+{
+    ar.blocks("correspondence.sigma_hat", sigma_hat), ar.blocks("correspondence.R", R), ar.blocks("correspondence.V", V);
+    ar.blocks("correspondence.sigma", sigma);
+    if (!theta_n.empty()) ar("correspondence.theta_n", theta_n);
+}
+
+template <int D>
+template <int Dy>
+void Correspondence<D>::update_stress(const Bonds& b, const Field<Dy>& y, const Field<Dy>& v, double dt)
+{
+    static_assert(Dy == 3 && D == 3, "Flanagan-Taylor is written for 3D");
+    const double K = par.material.K, G = par.material.G;
+    const bool damaged = b.has_damage();
+    if (damaged) k_formed_.track(b);
+    parallel_for(b.nodes(), [&](std::size_t i) {
+        Mat N[2], Ks;  // F K, Fdot K, K over intact bonds
+        Col m;
+        if (damaged && k_formed_.unchanged(b, i)) {  // K^-1 and m as last formed
+            family_sums<true, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
+        } else if (damaged) {
+            family_sums<true, true, 2>(b, i, {&y, &v}, N, &Ks, &m);
+            Kinv[i] = inverse_or_zero(Ks);
+            for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
+            k_formed_.formed(b, i);
+        } else {
+            family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
+        }
+        double d_eps_th = 0;
+        if (!theta_n.empty()) {  // thermal expansion: theta^n -> theta^(n+1), also where K is singular
+            const double th = (*thermal.theta)[i];
+            d_eps_th = thermal.alpha * (th - theta_n[i]);
+            theta_n[i] = th;
+        }
+        if (Kinv[i].isZero(0)) return;
+        F[i] = N[0] * Kinv[i];
+        sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], K, G, dt,  // step 1: Fdot = N[1] K^-1
+                                              par.rotation, d_eps_th);
+    });
+}
+
+}  // namespace pd
