@@ -8,6 +8,7 @@
 //   heated in one step is under -3 K eps I after that step's update (V9: the thermal strain increment is
 //   non-zero in the step where theta changes) and stays there while theta is held;
 // - J2 plasticity (PlasticCorrespondence): the same constrained stress while elastic, none when free;
+// - the viscoelastic wrapper: the same, taken once per step however many trials it evaluates;
 // - theta = theta_ref is the isothermal result bit for bit; the refusals.
 #include "pd/bond_loop.hpp"
 #include "pd/core/lattice.hpp"
@@ -238,8 +239,34 @@ TEST(CorrespondenceThermal, RefusesWhatIsNotWritten)
     const std::vector<double> theta2(plate.size(), theta_ref);
     Correspondence<2> strain({.material = mat, .plane = Plane::strain, .measure = dx}, plate, b2);
     EXPECT_THROW(strain.set_thermal_expansion({alpha, theta_ref, &theta2}), std::invalid_argument);
-    C3 ft({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
-    ft.set_thermal_expansion({alpha, theta_ref, &theta});
-    ViscoelasticCorrespondence ve(ft, {}, body.x);
-    EXPECT_THROW(ve.point_pass(b, body.x, 1e-7), std::invalid_argument);
+}
+
+// The viscoelastic wrapper: a clamped body heated in one step is under -3 K eps I (the branch sees only
+// the deviator, which stays 0), however many trials the step takes, and stays there while theta is held;
+// a free body expanding with theta keeps sigma at the O(K eps^2) of the elastic Flanagan-Taylor update.
+TEST(CorrespondenceThermal, ViscoelasticCorrespondenceTakesTheIncrementOncePerStep)
+{
+    const Body<3> body = block();
+    const Bonds b = build_bonds(body, 3 * dx);
+    std::vector<double> theta(body.size(), theta_ref);
+    const double dt = 1e-7, s = -3 * mat.K * alpha * heat, eps = alpha * heat;
+    for (bool free : {false, true}) {
+        C3 ft({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
+        ViscoelasticCorrespondence ve(ft, {.gamma_b = 8, .tau_b = 1e-6}, body.x);
+        ft.set_thermal_expansion({alpha, theta_ref, &theta});  // attached after the wrapper: taken at its next trial
+        std::fill(theta.begin(), theta.end(), theta_ref);
+        Field<3> f;
+        internal_force(ve, b, body.x, dt, f), ve.commit();
+        EXPECT_EQ(max_off(ft.sigma, ft, 0.0), 0.0);
+        std::fill(theta.begin(), theta.end(), theta_ref + heat);
+        const Field<3> y = free ? scaled(body, 1 + eps) : body.x;
+        const double expect = free ? 0.0 : s, tol = free ? 3 * mat.K * eps * eps : 1e-12 * std::abs(s);
+        for (int trial = 0; trial < 3; ++trial) {  // trials of one step do not accumulate the increment
+            internal_force(ve, b, y, dt, f);
+            EXPECT_LT(max_off(ft.sigma, ft, expect), tol) << "free " << free << " trial " << trial;
+        }
+        ve.commit();
+        internal_force(ve, b, y, dt, f), ve.commit();  // held: no further increment
+        EXPECT_LT(max_off(ft.sigma, ft, expect), tol) << "free " << free << " held";
+    }
 }

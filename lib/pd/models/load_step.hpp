@@ -12,6 +12,8 @@
 //      L dt = (F(y) - F(y_c)) F(y_m)^-1, exactly skew for a rigid rotation of the step (Cayley),
 //      and d dt = mid-point approximation of the logarithmic strain increment, error O(de^3)),
 //   3. calls the model's point_pass at y (F, P = J sigma F^-T, P K^-1);
+// (with thermal expansion, the model's theta^n is restored with sigma_hat: each trial takes the
+// temperature increment of the whole step, eq. 2.81);
 // commit(bonds, y) at convergence evaluates at y and stores the state as the new committed one.
 // advance (steps 1-2) and accept (store) serve a model that acts between steps 2 and 3
 // (models/viscoelastic_correspondence.hpp).
@@ -54,6 +56,10 @@ public:
         model.sigma_hat = sigma_hat_c_;
         model.R = R_c_;
         model.V = V_c_;
+        if constexpr (has_theta_n) {
+            if (theta_n_c_.size() != model.theta_n.size()) theta_n_c_ = model.theta_n;  // expansion attached since the last commit
+            model.theta_n = theta_n_c_;
+        }
         y_m_.resize(y.size());
         v_.resize(y.size());
         for (int d = 0; d < D; ++d)
@@ -84,19 +90,27 @@ public:
     {
         ar(name + ".y_c", y_c_);
         ar.blocks(name + ".sigma_hat_c", sigma_hat_c_), ar.blocks(name + ".R_c", R_c_), ar.blocks(name + ".V_c", V_c_);
+        if constexpr (has_theta_n)
+            if (!theta_n_c_.empty()) ar(name + ".theta_n_c", theta_n_c_);
     }
 
     Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const { return model.bond_force(i, k, j, Y); }
 
 private:
+    // A model with thermal expansion in its rate form keeps theta^n, the temperature of its last update
+    // (Correspondence::theta_n): committed and restored with the stress, so that every trial of a step
+    // takes the whole increment theta - theta^n of the committed state.
+    static constexpr bool has_theta_n = requires(Model& m) { m.theta_n; };
     Field<D> y_c_, y_m_, v_;
     std::decay_t<decltype(std::declval<Model&>().sigma_hat)> sigma_hat_c_, R_c_, V_c_;
+    std::vector<double> theta_n_c_;
 
     void store()
     {
         sigma_hat_c_ = model.sigma_hat;
         R_c_ = model.R;
         V_c_ = model.V;
+        if constexpr (has_theta_n) theta_n_c_ = model.theta_n;
     }
 };
 

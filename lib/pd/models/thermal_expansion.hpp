@@ -20,8 +20,9 @@
 // what the owner-node rule gives for a bond-based model: each end's half of the pair force uses its own
 // node), LPS (with or without SCF: eps_i enters only per node, see lps.hpp), correspondence (the small
 // strain less eps_i I, or the Flanagan-Taylor increment of eq. 2.81, see correspondence.hpp), its J2
-// plasticity (plastic_correspondence.hpp) and PALS (per node, see pals.hpp). The plastic and
-// viscoelastic LPS and PALS models and the viscoelastic correspondence model refuse it.
+// plasticity (plastic_correspondence.hpp), its viscoelastic wrapper (viscoelastic_correspondence.hpp: the
+// Flanagan-Taylor increment, the branch sees only the deviator) and PALS (per node, see pals.hpp). The
+// plastic and viscoelastic LPS and PALS models refuse it.
 #pragma once
 #include <cmath>
 #include <cstddef>

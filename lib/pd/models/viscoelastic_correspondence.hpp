@@ -9,8 +9,10 @@
 //   4. sigma = R (sigma_hat_0 - q) R^T                                                       (7.16)
 //   5. P = J sigma F^-T and the force state by the wrapped model's point pass.
 // So the deviatoric response relaxes from G (1 + gamma_b) to G with time tau_b, and the volumetric
-// response is the elastic K. In the strain form of laws/maxwell.hpp, x = s_hat/(2G) and the branch
-// modulus is 2 G gamma_b (q = 2 G gamma_b h); the dissipated energy of the step per node [J/m^3] is
+// response is the elastic K. Thermal expansion (the wrapped model's set_thermal_expansion) enters step 1
+// as the increment alpha (theta - theta^n) I of eq. 2.81 (LoadStep restores theta^n with sigma_hat, so
+// repeated trials take it whole); isotropic, it leaves s_hat and the branch alone. In the strain form
+// of laws/maxwell.hpp, x = s_hat/(2G) and the branch modulus is 2 G gamma_b (q = 2 G gamma_b h); the dissipated energy of the step per node [J/m^3] is
 // (2 G gamma_b / tau_b) int (x - h):(x - h) dt, exact per step.
 // History protocol (as models/viscoelastic_lps.hpp): point_pass(bonds, y, dt) = trial
 // state at y from the committed state (sigma_hat, R, V, q, s_hat, configuration y_c; no accumulation),
@@ -72,8 +74,6 @@ public:
     // Trial state at y (steps 1-5 of the header).
     void point_pass(const Bonds& b, const Field<3>& y)
     {
-        if (model.thermal_expansion().active())  // its trial steps would take the temperature increment once only
-            throw std::invalid_argument("ViscoelasticCorrespondence: thermal expansion is not written for this model");
         step_.advance(b, y);  // step 1
         const laws::MaxwellCoefficients c = laws::maxwell_coefficients(dt, tau_b);
         const double k_b = 2 * model.par.material.G * gamma_b;  // branch modulus 2 G_b [Pa]
