@@ -198,6 +198,33 @@ TEST(Heat, ConvectionCoolsTowardsAmbientAtTheLumpedRate)
     for (double t : e) EXPECT_NEAR(t, 100 - dt * h * 80 / rho_c, 1e-9);  // cooling, not heating
 }
 
+// spec/000a V8: a surface flux q applied as r = q/Delta on a layer of thickness Delta delivers the
+// power q S, and conduction passes it on without loss: after n explicit steps the heat content of the
+// body is q S n dt (Agwai conserves heat; round-off of the sums only).
+TEST(Heat, SurfaceFluxDeliversQTimesAreaThroughItsLayer)
+{
+    const int n = 8;
+    const double dx = 1e-3, rho_c = 3e6, q = 2.5e5, dt = 0.05;  // [m], [J/(m^3 K)], [W/m^2], [s]
+    const auto body = cube<3>(n, dx);
+    const auto bonds = pd::build_bonds(body, 3.05 * dx);
+    std::vector<int> layer;  // two cells deep on the face x = 0
+    for (std::size_t i = 0; i < body.size(); ++i) if (body.x.c[0][i] < 2 * dx) layer.push_back(int(i));
+    pd::HeatLoads loads;
+    pd::add_surface_flux(loads, body.size(), layer, q, 2 * dx);
+    double power = 0;
+    for (std::size_t i = 0; i < body.size(); ++i) power += loads.source[i] * body.volume[i];
+    const double S = (n * dx) * (n * dx);
+    EXPECT_NEAR(power, q * S, 1e-12 * q * S);
+    pd::Agwai model({1.6736}, body, bonds);
+    pd::Conduction<pd::Agwai> heat(model, bonds, std::vector<double>(body.size(), rho_c), loads);
+    std::vector<double> theta(body.size(), 30.0);
+    for (int s = 0; s < 20; ++s) heat.explicit_euler(theta, dt);
+    double content = 0;
+    for (std::size_t i = 0; i < body.size(); ++i) content += rho_c * (theta[i] - 30) * body.volume[i];
+    EXPECT_NEAR(content, q * S * 20 * dt, 1e-10 * q * S * 20 * dt);
+    EXPECT_GT(theta[layer[0]], theta[body.size() - 1]);  // and it enters at the face
+}
+
 TEST(Heat, BrokenBondsInsulate)
 {
     const double dx = 1e-3, A = 1e-4;
