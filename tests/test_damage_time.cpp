@@ -168,6 +168,27 @@ TEST(Boundary, TractionIsBodyForceOnTheLayer)
     EXPECT_DOUBLE_EQ(b.c[1][2], 0.0);
 }
 
+// spec/000a V8 as a total: a traction p on the face of a block, applied as p/Delta on a layer of
+// thickness Delta, is the resultant p S (S the face area), here at a time-scaled instant.
+TEST(Boundary, TractionLayerCarriesTheResultantPS)
+{
+    const double dx = 1e-3;
+    const Body<3> body = box<3>({{0, 0, 0}}, {{6 * dx, 4 * dx, 5 * dx}}, dx);
+    NodeSet layer;  // three cells deep under the face x = 6 dx
+    for (std::size_t i = 0; i < body.size(); ++i) if (body.x.c[0][i] > 3 * dx) layer.push_back(int(i));
+    Boundary<3> bc;
+    const Vec<3> p{{3e6, -1e6, 0.5e6}};
+    bc.traction(layer, p, 3 * dx, TimeFunction::ramp(1.0, 2e-6));
+    Field<3> b(body.size());
+    bc.external(1e-6, b);  // half the ramp
+    const double S = (4 * dx) * (5 * dx);
+    for (int d = 0; d < 3; ++d) {
+        double F = 0;
+        for (std::size_t i = 0; i < body.size(); ++i) F += b.c[d][i] * body.volume[i];
+        EXPECT_NEAR(F, 0.5 * p[d] * S, 1e-12 * std::abs(p[0]) * S) << "component " << d;
+    }
+}
+
 namespace {
 // Two nodes 1 m apart, node 0 fixed, PMB 1D with delta = 1, A = 1, V = 1: the force density on
 // node 1 is -c V u = -(2E/(A delta^2)) u, so with E = 1/2, rho = 1 it oscillates with omega = 1.

@@ -36,6 +36,17 @@ double at_time(const std::vector<double>& t, const std::vector<double>& y, doubl
     return NAN;
 }
 
+// Node counts; the source's model sizes (sec. 9.2.3-9.2.5) for its grids, delta = 0.5 and 1 mm at m = 3.05
+// with the shell of thickness dx.
+void mesh_rows(pd::io::Case& run, const pd::MeteoriteScene& sc)
+{
+    const bool source_grid = sc.p.m == 3.05 && sc.p.shell_factor == 1;
+    const double published = !source_grid ? NAN : sc.p.delta == 0.5e-3 ? 145592 : sc.p.delta == 1e-3 ? 21488 : NAN;
+    const double n = double(sc.s.body.size());
+    run.summary({{"nodes", n, published, pd::io::relative_error(n, published), "-"},
+                 {"shell_nodes", double(sc.s.body.size() - sc.s.n_body), NAN, NAN, "-"}});
+}
+
 int thermal_study(pd::io::Case& run, pd::MeteoriteScene& sc, double t_end)
 {
     const double dt_max = sc.thermal_step();
@@ -60,6 +71,10 @@ int thermal_study(pd::io::Case& run, pd::MeteoriteScene& sc, double t_end)
     const pd::MeteoriteScene::Temperatures T = sc.temperatures();
     double excess = -HUGE_VAL;
     for (std::size_t q = 1; q < t.size(); ++q) excess = std::max(excess, shell[q] - surface[q]);
+    pd::io::CsvWriter axis(run.file("axis_profile.csv"), {"x_m", "T_C", "shell"});  // the flight axis at the end (Fig. 9.22's mid-plane)
+    for (std::size_t i = 0; i < sc.s.body.size(); ++i)
+        if (std::abs(sc.s.body.x.c[1][i]) < 0.5 * sc.s.dx && std::abs(sc.s.body.x.c[2][i]) < 0.5 * sc.s.dx)
+            axis.row({sc.s.body.x.c[0][i], sc.field->theta[i], double(sc.s.in_shell(i))});
     const double P_law = sc.p.scale * sc.p.q_stag * std::numbers::pi * sc.p.R * sc.p.R;  // the surrogate's total power (header)
     const bool law = sc.p.flux_table.empty();
     const bool thin = sc.p.shell_factor < 1;  // the source's 10x thinner shell: its own published values
@@ -70,6 +85,7 @@ int thermal_study(pd::io::Case& run, pd::MeteoriteScene& sc, double t_end)
                           {"rise_max_2s", at_time(t, body, 2.0) - sc.p.T0, 400, NAN, "K"},
                           {"trapped_fraction_1s", at_time(t, trapped, 1.0), thin ? 0.1 : NAN, NAN, "-"},  // it falls with time
                           {"trapped_fraction_end", trapped.back(), NAN, NAN, "-"}});
+    mesh_rows(run, sc);
     run.summary({{"heat_input", sc.power, law ? P_law : NAN, law ? pd::io::relative_error(sc.power, P_law) : NAN, "W"},
                  {"heat_balance_error", balance, NAN, NAN, "-"},
                  {"thermal_steps", double(steps), 260, NAN, "-"},
@@ -139,6 +155,7 @@ int spall_study(pd::io::Case& run, pd::MeteoriteScene& sc, double t_end, double 
     const double d = sc.p.delta;
     run.summary_observed({{"spall_depth_1s", depth_fig, d, pd::io::relative_error(depth_fig, d), "m"},
                           {"spall_depth_end", depth_end, d, pd::io::relative_error(depth_end, d), "m"}});
+    mesh_rows(run, sc);
     run.summary({{"damage_max", phi_max, NAN, NAN, "-"},
                  {"broken_bonds", double(mech.ex.broken_bonds), NAN, NAN, "-"},
                  {"nsync_mk", double(clocks.nsync_mk), NAN, NAN, "-"},
