@@ -14,6 +14,10 @@
 // 3D. Damage: the family sums skip broken bonds (as LPS), recompute(bonds) refreshes m_i and
 // alpha_i (LPS intact rule), so a damaged body equals the body built without the broken bonds
 // (tests/test_plastic_models.cpp); a broken bond keeps its committed e_dp and carries no force.
+// Thermal expansion (the wrapped LPS's set_thermal_expansion): lps.theta is the mechanical dilatation
+// theta - 3 eps_i, and e_de = e - eps_i |xi| - theta_mech |xi|/3 - e_dp (the isotropic thermal strain
+// leaves the deviatoric extension, hence the yield, untouched: a free or clamped heated body does
+// not flow); eps_i = 0 without it, exactly the isothermal result.
 // History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
@@ -69,13 +73,11 @@ struct PlasticLPS {
     }
     void point_pass(const Bonds& b, const Field<3>& y)
     {
-        if (lps.thermal_expansion().active())  // its deviatoric extension would not take it
-            throw std::invalid_argument("PlasticLPS: thermal expansion is not written for this model");
         lps.point_pass(b, y);
         const double G = lps.G;
         const bool damaged = b.has_damage();
         parallel_for(b.nodes(), [&](std::size_t i) {
-            const double th = lps.theta[i] / 3;
+            const double th = lps.theta[i] / 3 + lps.thermal_expansion().strain(i);  // header
             double sum = 0;  // sum omega e_de^2 V [m^5] over intact bonds
             for_family(b, i, [&](std::int64_t k, int) {
                 if (damaged && !b.intact[k]) { tdev[k] = 0; return; }
@@ -101,7 +103,7 @@ struct PlasticLPS {
     std::vector<double> energy_density(const Bonds& b, const Field<3>& y) const
     {
         auto bond = [&](std::size_t i, std::int64_t k) {
-            const double e = deviatoric_extension(b, y, i, k, lps.theta[i] / 3, edp);
+            const double e = deviatoric_extension(b, y, i, k, lps.theta[i] / 3 + lps.thermal_expansion().strain(i), edp);
             return b.omega[k] * e * e * b.volume[k];
         };
         return node_sums(b, bond, [&](std::size_t i, double dev) {

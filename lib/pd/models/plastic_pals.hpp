@@ -15,6 +15,9 @@
 // 3D. Damage: the family sums skip broken bonds, recompute(bonds) recomputes the multipliers
 // (PALS), so a damaged body equals the body built without the broken bonds
 // (tests/test_plastic_models.cpp); a broken bond keeps its committed e_dp and carries no force.
+// Thermal expansion (the wrapped PALS's set_thermal_expansion): pals.theta is the total dilatation, so
+// e_de is already the mechanical deviatoric extension (pals.hpp header); the isotropic part takes the
+// mechanical dilatation theta_i - eps_i m_omega_i (mechanical_dilatation).
 // History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
@@ -71,8 +74,6 @@ struct PlasticPALS {
     }
     void point_pass(const Bonds& b, const Field<3>& y)
     {
-        if (pals.thermal_expansion().active())  // its deviatoric extension would not take it
-            throw std::invalid_argument("PlasticPALS: thermal expansion is not written for this model");
         pals.point_pass(b, y);
         const double G = pals.G;
         const bool damaged = b.has_damage();
@@ -90,7 +91,7 @@ struct PlasticPALS {
             const laws::ScalarReturn r = pts.scalar_return(i, G, trial);
             const double scale = r.plastic ? r.sigma_eff / trial : 1.0;
             const double flow = r.plastic ? 3 * G * r.dlambda / trial : 0.0;   // (5.58)
-            const double P = pals.K * pals.theta[i] - scale * sx / 3;            // K theta - (2G/3)(sigma x)•e_de_np1
+            const double P = pals.K * mechanical_dilatation(i) - scale * sx / 3;  // K theta - (2G/3)(sigma x)•e_de_np1
             for_family(b, i, [&](std::int64_t k, int) {
                 if (damaged && !b.intact[k]) { edp[k] = edp_c[k]; return; }
                 const double e = t[k];
@@ -108,8 +109,13 @@ struct PlasticPALS {
             const double e = deviatoric_extension(b, y, i, k, pals.theta[i] / 3, edp);
             return pals.s_i[k] * e * e;
         };
-        return node_sums(b, bond, [&](std::size_t i, double dev) { return 0.5 * pals.K * pals.theta[i] * pals.theta[i] + 0.5 * dev; });
+        return node_sums(b, bond, [&](std::size_t i, double dev) {
+            const double th = mechanical_dilatation(i);
+            return 0.5 * pals.K * th * th + 0.5 * dev;
+        });
     }
+    // theta_i - eps_i m_omega_i: the dilatation less the free thermal one (theta_i without thermal expansion).
+    double mechanical_dilatation(std::size_t i) const { return pals.theta[i] - pals.thermal_expansion().strain(i) * pals.m_omega[i]; }
 
     // (t_i<xi> + t_j<-xi>) V_j / |Y|.
     double bond_scalar(std::size_t, std::int64_t k, int, double ylen) const

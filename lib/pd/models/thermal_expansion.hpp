@@ -14,15 +14,15 @@
 // ThermalExpansion (damage/critical_stretch.hpp); the micropotential rule, given it by its
 // set_thermal_expansion, takes the work along the mechanical displacement only (the thermal bond
 // displacement alpha dtheta xi of each step subtracted, spec/000c sec. 2.3; damage/micropotential.hpp).
-// Wrappers of these models that have their own extension (viscoelastic and plastic LPS) and the
-// lateral images of bc/lateral_images.hpp refuse an active thermal expansion.
+// Wrappers with their own deviatoric extension (viscoelastic LPS, plastic LPS and PALS) take it from the
+// wrapped model's expansion; the lateral images of bc/lateral_images.hpp refuse an active one.
 // Models with thermal expansion: PMB (whose pair force takes the mean of the two ends' eps, which is
 // what the owner-node rule gives for a bond-based model: each end's half of the pair force uses its own
 // node), LPS (with or without SCF: eps_i enters only per node, see lps.hpp), correspondence (the small
 // strain less eps_i I, or the Flanagan-Taylor increment of eq. 2.81, see correspondence.hpp), its J2
 // plasticity (plastic_correspondence.hpp), its viscoelastic wrapper (viscoelastic_correspondence.hpp: the
-// Flanagan-Taylor increment, the branch sees only the deviator) and PALS (per node, see pals.hpp). The
-// plastic and viscoelastic LPS and PALS models refuse it.
+// Flanagan-Taylor increment, the branch sees only the deviator), PALS (per node, see pals.hpp) and the
+// viscoelastic LPS and plastic LPS and PALS wrappers (their deviatoric extension).
 #pragma once
 #include <cmath>
 #include <cstddef>

@@ -17,6 +17,9 @@
 // COMMITTED e_d^n, e_db^n (it does not accumulate: two calls at the same y give the same force);
 // commit() makes the trial history the committed one (once per accepted time step: scene.hpp). The per-bond history
 // (e_d, e_db, committed and trial) exists only in scenes that use this model.
+// Thermal expansion (the wrapped LPS's set_thermal_expansion): lps.theta is the mechanical dilatation
+// theta - D eps_i, so e_d = e - eps_i |xi| - theta_mech |xi|/D, the deviatoric extension of e_mech (the
+// isotropic thermal strain does not load the branch).
 // Dissipation (7.10): the energy dissipated by the dashpots of node i over the trial step [J/m^3],
 //   D_i = sum_k (alpha_b,i omega V_j / tau_b) int (e_d - e_db)^2 dt   (laws/maxwell.hpp, exact per step).
 #pragma once
@@ -90,8 +93,6 @@ struct ViscoelasticLPS {
     template <int D>
     void point_pass(const Bonds& b, const Field<D>& y)
     {
-        if (lps.thermal_expansion().active())  // its e_d and Maxwell branch would not take it
-            throw std::invalid_argument("ViscoelasticLPS: thermal expansion is not written for this model");
         lps.point_pass(b, y);
         const laws::MaxwellCoefficients c = laws::maxwell_coefficients(dt, tau_b);
         const bool damaged = b.has_damage();
@@ -105,7 +106,7 @@ struct ViscoelasticLPS {
                     return;
                 }
                 const double L = b.length[k];
-                const double ed = norm(y[j] - y[i]) - L - lps.theta[i] * L / dim;  // (4.9)
+                const double ed = norm(y[j] - y[i]) - L - lps.theta[i] * L / dim - lps.thermal_expansion().strain(i) * L;  // (4.9), header
                 const double edb = laws::maxwell_update(edb_c[k], ed_c[k], ed, c);            // (7.27)
                 ed_t[k] = ed, edb_t[k] = edb;
                 tv[k] = alpha_b * (ed - edb);                                                  // (7.21), branch part
