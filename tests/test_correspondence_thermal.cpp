@@ -205,6 +205,56 @@ TEST(CorrespondenceThermal, FlanaganTaylorClampedBodyTakesTheIncrementInTheStepT
     EXPECT_LT(max_off(m2.sigma, m2, s), 1e-12 * std::abs(s));
 }
 
+// spec/000b V12 and eq. 4.44: with d = 0 and theta changing, s_hat and sigma_H scale by G^(n+1)/G^n and
+// K^(n+1)/K^n, so sigma_hat = D(theta) : eps_hat is kept at fixed strain (E and nu both vary, so the two
+// ratios differ); a clamped body heated in two steps under a linear alpha(theta) is under
+// -3 K int alpha dtheta (the mean of the two ends' alpha is exact for a linear alpha).
+TEST(CorrespondenceThermal, TemperatureDependentModuliRescaleTheUnrotatedStress)
+{
+    const Body<3> body = block();
+    const Bonds b = build_bonds(body, 3 * dx);
+    std::vector<double> theta(body.size(), theta_ref);
+    const double dt = 1e-7, dT = 100;
+    auto moduli = [](double th) { return Elastic::from_E_nu(200e9 * (1 - 1e-3 * (th - theta_ref)), 0.25 + 2e-4 * (th - theta_ref)); };
+    C3 m({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
+    m.set_thermal_expansion({0.0, theta_ref, &theta});
+    m.set_temperature_dependence({.material = moduli, .alpha = [](double) { return 0.0; }});
+    Field<3> y = body.x;  // a shear and a stretch: both parts of sigma_hat non-zero
+    for (std::size_t i = 0; i < body.size(); ++i) y.c[0][i] += 1e-3 * body.x.c[1][i] + 2e-3 * body.x.c[0][i];
+    rate_step(m, b, body.x, y, dt);
+    const std::vector<C3::Mat> before = m.sigma_hat;
+    std::fill(theta.begin(), theta.end(), theta_ref + dT);
+    rate_step(m, b, y, y, dt);  // d = 0
+    const Elastic m0 = moduli(theta_ref), m1 = moduli(theta_ref + dT);
+    ASSERT_GT(std::abs(m1.K / m0.K - m1.G / m0.G), 0.05);
+    double err = 0, scale = 0;
+    for (std::size_t i = 0; i < body.size(); ++i) {
+        if (m.Kinv[i].isZero(0)) continue;
+        const double pH = before[i].trace() / 3;
+        C3::Mat expect = before[i] * (m1.G / m0.G);
+        expect.diagonal().array() += pH * (m1.K / m0.K - m1.G / m0.G);
+        err = std::max(err, (m.sigma_hat[i] - expect).cwiseAbs().maxCoeff()), scale = std::max(scale, before[i].cwiseAbs().maxCoeff());
+    }
+    EXPECT_GT(scale, 1e6);
+    EXPECT_LT(err, 1e-12 * scale);
+    // alpha(theta) linear, constant moduli: two heating steps of dT from theta_ref on a clamped body.
+    const double a0 = alpha, a1 = 2e-3 * alpha;  // alpha = a0 + a1 (theta - theta_ref)
+    std::fill(theta.begin(), theta.end(), theta_ref);
+    C3 c({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
+    c.set_thermal_expansion({a0, theta_ref, &theta});
+    c.set_temperature_dependence({.alpha = [&](double th) { return a0 + a1 * (th - theta_ref); }});
+    for (int step = 1; step <= 2; ++step) {
+        std::fill(theta.begin(), theta.end(), theta_ref + step * dT);
+        rate_step(c, b, body.x, body.x, dt);
+        const double T = step * dT, s = -3 * mat.K * (a0 * T + 0.5 * a1 * T * T);  // -3 K int alpha dtheta
+        EXPECT_LT(max_off(c.sigma, c, s), 1e-12 * std::abs(s)) << "step " << step;
+    }
+    C3 lin({.material = mat}, body, b);
+    EXPECT_THROW(lin.set_temperature_dependence({.material = moduli}), std::invalid_argument);
+    C3 cold({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
+    EXPECT_THROW(cold.set_temperature_dependence({.material = moduli}), std::invalid_argument);  // no temperatures yet
+}
+
 TEST(CorrespondenceThermal, PlasticCorrespondenceTakesTheMechanicalStrain)
 {
     const Body<3> body = block();

@@ -28,6 +28,7 @@
 //                         theta^n the temperature of node i at the previous update (theta_ref before the first:
 //                         a body that starts at theta != theta_ref and y = x is then under the same -3 K eps_i as
 //                         the linear law; the rate form knows no other reference). theta^n is rate state.
+//                         K, G and alpha of theta: set_temperature_dependence (correspondence_rate_form.hpp).
 //   Law::saint_venant_kirchhoff refuses it.
 // The free body y = (1 + eps) x carries no stress in the linear law; in the rate form sum d dt = ln(1 + eps),
 // so sigma_hat is 3 K (ln(1 + eps) - eps) = O(K eps^2) there.
@@ -73,6 +74,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <mutex>
 #include <new>
 #include <stdexcept>
@@ -205,6 +207,13 @@ struct Correspondence {
         if (t.active() && par.law == Law::flanagan_taylor) theta_n.assign(F.size(), t.theta_ref);
     }
     const ThermalExpansion& thermal_expansion() const { return thermal; }
+    // Temperature-dependent Flanagan-Taylor elasticity (correspondence_rate_form.hpp); needs the thermal
+    // expansion (its temperatures and theta^n). Empty functions: back to par.material and thermal.alpha.
+    struct TemperatureDependence {
+        std::function<Elastic(double theta)> material;  // K(theta), G(theta)
+        std::function<double(double theta)> alpha;      // linear expansion coefficient [1/K]
+    };
+    void set_temperature_dependence(TemperatureDependence t);
     // (D lambda + 2 G) eps_i: the stress of the linear law held at the free thermal strain of node i [Pa]
     // (the chunk kernels' operations, detail::ChunkThermal).
     double thermal_pressure(std::size_t i) const { return (D * lambda + 2 * par.material.G) * (thermal.alpha * ((*thermal.theta)[i] - thermal.theta_ref)); }
@@ -421,6 +430,7 @@ struct Correspondence {
 
 private:
     ThermalExpansion thermal;  // header; inactive by default (set_thermal_expansion)
+    TemperatureDependence tdep_;  // set_temperature_dependence
 
 #ifdef PD_CHUNK_WIDTH
     detail::ChunkThermal chunk_thermal() const

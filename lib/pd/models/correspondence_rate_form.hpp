@@ -25,6 +25,22 @@ void Correspondence<D>::rate_state(StateArchive& ar)
     if (!theta_n.empty()) ar("correspondence.theta_n", theta_n);
 }
 
+// Temperature-dependent elasticity (spec/000b sec. 1.7, eqs. 4.38-4.44, V12; the source's
+// jc_correspondence): at each update of node i from theta^n to theta^(n+1),
+//   s_hat   <- (G^(n+1)/G^n) s_hat,   sigma_H <- (K^(n+1)/K^n) sigma_H     (4.44: sigma_hat = D(theta):eps_hat
+//                                                                         kept at fixed strain)
+//   then the increment with K^(n+1), G^(n+1) and the thermal strain increment
+//   (alpha(theta^n) + alpha(theta^(n+1)))/2 (theta^(n+1) - theta^n)         (exact for a linear alpha(theta)).
+// The hourglass force and the stable-step bounds keep par.material.
+template <int D>
+void Correspondence<D>::set_temperature_dependence(TemperatureDependence t)
+{
+    if (par.law != Law::flanagan_taylor) throw std::invalid_argument("Correspondence: temperature-dependent elasticity is written for Law::flanagan_taylor");
+    if ((t.material || t.alpha) && theta_n.empty())
+        throw std::invalid_argument("Correspondence: temperature-dependent elasticity needs the thermal expansion (its temperatures) set first");
+    tdep_ = std::move(t);
+}
+
 template <int D>
 template <int Dy>
 void Correspondence<D>::update_stress(const Bonds& b, const Field<Dy>& y, const Field<Dy>& v, double dt)
@@ -46,15 +62,23 @@ void Correspondence<D>::update_stress(const Bonds& b, const Field<Dy>& y, const 
         } else {
             family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
         }
-        double d_eps_th = 0;
+        double d_eps_th = 0, th0 = 0, th1 = 0;
         if (!theta_n.empty()) {  // thermal expansion: theta^n -> theta^(n+1), also where K is singular
-            const double th = (*thermal.theta)[i];
-            d_eps_th = thermal.alpha * (th - theta_n[i]);
-            theta_n[i] = th;
+            th0 = theta_n[i], th1 = (*thermal.theta)[i];
+            d_eps_th = (tdep_.alpha ? 0.5 * (tdep_.alpha(th0) + tdep_.alpha(th1)) : thermal.alpha) * (th1 - th0);
+            theta_n[i] = th1;
         }
         if (Kinv[i].isZero(0)) return;
+        double Ki = K, Gi = G;
+        if (tdep_.material) {  // (4.44)
+            const Elastic m0 = tdep_.material(th0), m1 = tdep_.material(th1);
+            Ki = m1.K, Gi = m1.G;
+            const double pH = sigma_hat[i].trace() / 3;
+            sigma_hat[i] *= m1.G / m0.G;
+            sigma_hat[i].diagonal().array() += pH * (m1.K / m0.K - m1.G / m0.G);
+        }
         F[i] = N[0] * Kinv[i];
-        sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], K, G, dt,  // step 1: Fdot = N[1] K^-1
+        sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], Ki, Gi, dt,  // step 1: Fdot = N[1] K^-1
                                               par.rotation, d_eps_th);
     });
 }
