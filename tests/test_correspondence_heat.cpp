@@ -105,3 +105,65 @@ TEST(CorrespondenceHeat, AssembledOperatorEqualsTheHeatLoopColumnByColumn)
         for (std::size_t r = 0; r < body.size(); ++r) EXPECT_NEAR(A(r, c), Q[r], 1e-9 * A.cwiseAbs().maxCoeff());
     }
 }
+
+// spec/000a eq. 2.82: under a uniform stretch F = diag(l, 1, 1) the Lagrangian flux is k diag(1/l, l, l) g,
+// so Q of theta = x^2/2 is k/l and of theta = y^2/2 is k l in the interior; a rigid rotation changes
+// nothing (det R R^-1 R^-T = I, to round-off); the assembled operator is the point pass's at that F.
+TEST(CorrespondenceHeat, DeformationEntersThroughTheLagrangianConductivity)
+{
+    const int n = 16;
+    const double dx = 1e-3, k = 40, m = 3.05, l = 1.25;
+    const auto body = cube<3>(n, dx, 1);
+    const auto bonds = pd::build_bonds(body, m * dx);
+    using Mat = pd::CorrespondenceHeat<3>::Mat;
+    std::vector<Mat> F(body.size(), Mat::Identity());
+    for (Mat& f : F) f(0, 0) = l;
+    pd::CorrespondenceHeat<3> model({k, 0.5, 1}, body, bonds);
+    model.set_deformation(&F);
+    std::vector<double> qx(body.size()), qy(body.size()), Q;
+    for (std::size_t i = 0; i < body.size(); ++i) qx[i] = 0.5 * std::pow(body.x.c[0][i], 2), qy[i] = 0.5 * std::pow(body.x.c[1][i], 2);
+    int interior = 0;
+    pd::heat_flow(model, bonds, qx, Q);
+    for (std::size_t i = 0; i < body.size(); ++i)
+        if (deep_interior(body, i, n, dx, m * dx)) {
+            EXPECT_NEAR(Q[i], k / l, 1e-8 * k);
+            ++interior;
+        }
+    EXPECT_GT(interior, 0);
+    pd::heat_flow(model, bonds, qy, Q);
+    for (std::size_t i = 0; i < body.size(); ++i)
+        if (deep_interior(body, i, n, dx, m * dx)) {
+            EXPECT_NEAR(Q[i], k * l, 1e-8 * k);
+        }
+    // A rotation by 0.7 rad about z: the same Q as undeformed.
+    const Mat Rz = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    std::vector<Mat> R(body.size(), Rz);
+    std::vector<double> Q0;
+    pd::CorrespondenceHeat<3> plain({k, 0.5, 1}, body, bonds);
+    pd::heat_flow(plain, bonds, qy, Q0);
+    model.set_deformation(&R);
+    pd::heat_flow(model, bonds, qy, Q);
+    for (std::size_t r = 0; r < body.size(); ++r) EXPECT_NEAR(Q[r], Q0[r], 1e-10 * k * n * n);
+    std::vector<Mat> few(3, Mat::Identity());
+    EXPECT_THROW(model.set_deformation(&few), std::invalid_argument);
+    // The assembled operator at a different F per node against the point pass (a 6^3 cube).
+    const auto small = cube<3>(6, dx, 1);
+    const auto sb = pd::build_bonds(small, m * dx);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-0.2, 0.2);
+    std::vector<Mat> Fs(small.size());
+    std::vector<double> th(small.size());
+    for (std::size_t i = 0; i < small.size(); ++i) {
+        Fs[i] = Mat::Identity();
+        for (int a = 0; a < 3; ++a) for (int c = 0; c < 3; ++c) Fs[i](a, c) += u(rng);
+        th[i] = 300 + 1e3 * u(rng);
+    }
+    pd::CorrespondenceHeat<3> sm({k, 0.5, 1}, small, sb);
+    sm.set_deformation(&Fs);
+    pd::heat_flow(sm, sb, th, Q);
+    const auto A = pd::heat_operator(sm, sb);
+    const Eigen::VectorXd AQ = A * Eigen::Map<const Eigen::VectorXd>(th.data(), long(th.size()));
+    double scale = 0;
+    for (double q : Q) scale = std::max(scale, std::abs(q));
+    for (std::size_t r = 0; r < small.size(); ++r) EXPECT_NEAR(AQ(long(r)), Q[r], 1e-9 * scale);
+}

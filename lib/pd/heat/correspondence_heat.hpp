@@ -13,6 +13,10 @@
 //   (g exact, hourglass term 0) at every node with an invertible K; Q = k lap(theta) in the interior
 //   for quadratic fields. The operator is linear in theta: add_operator() gives its matrix exactly.
 // k(theta): conductivity.hpp (node i's flux at k(theta_i), the suppression at the bond's k).
+// Deformation (spec/000a eq. 2.82, optional, set_deformation): the Lagrangian Fourier law
+// q_i = k det(F_i) F_i^-1 F_i^-T g_i with the deformation gradients of a mechanical correspondence model
+// (read at each point pass; the operator of add_operator is the one at the F of its call). Without it,
+// or with F = I, q = k g; a rigid rotation leaves q unchanged.
 // A node whose K is singular (models/shape_tensor.hpp) gets K^-1 = 0: no gradient, only the suppression term acts.
 #pragma once
 #include "pd/core/bonds.hpp"
@@ -48,6 +52,22 @@ struct CorrespondenceHeat {
     std::vector<Mat> Kinv;         // K_i^-1
     std::vector<Col> g, a;         // gradient [K/m] and K^-1 q per node
     const Bonds* bonds = nullptr;
+    const std::vector<Mat>* deformation = nullptr;  // F per node (header); null: undeformed
+
+    // Attaches the deformation gradients F [-] (kept by reference, one per node); nullptr detaches.
+    void set_deformation(const std::vector<Mat>* F)
+    {
+        if (F && F->size() != Kinv.size()) throw std::invalid_argument("CorrespondenceHeat: one deformation gradient per node needed");
+        deformation = F;
+    }
+    // det(F) F^-1 F^-T of node i: the conductivity tensor's factor in the reference configuration (2.82).
+    Mat lagrangian(std::size_t i) const
+    {
+        if (!deformation) return Mat::Identity();
+        const Mat& F = (*deformation)[i];
+        const Mat Finv = F.inverse();
+        return F.determinant() * Finv * Finv.transpose();
+    }
 
     CorrespondenceHeat(const Params& p, const Body<D>& body, const Bonds& b)
         : par(p), x(body.x), Kinv(b.nodes(), Mat::Zero()), g(b.nodes(), Col::Zero()), a(b.nodes(), Col::Zero()), bonds(&b)
@@ -89,7 +109,7 @@ struct CorrespondenceHeat {
             Col sum = Col::Zero();
             for_intact_bonds(b, i, [&](std::int64_t k, int j) { sum += b.omega[k] * b.volume[k] * (theta[j] - theta[i]) * xi(i, j); });
             g[i] = Kinv[i] * sum;
-            a[i] = Kinv[i] * ((par.k * s(i)) * g[i]);
+            a[i] = deformation ? Col(Kinv[i] * ((par.k * s(i)) * (lagrangian(i) * g[i]))) : Col(Kinv[i] * ((par.k * s(i)) * g[i]));
         });
     }
 
@@ -130,8 +150,8 @@ struct CorrespondenceHeat {
                 const double V = b.volume[k];
                 // omega V (a_i + a_j) . xi, a = k s K^-1 g
                 const Col w = b.omega[k] * V * par.k * e;
-                add_gradient(i, i, Kinv[i].transpose() * (s(i) * w));
-                add_gradient(i, j, Kinv[j].transpose() * (s(j) * w));
+                add_gradient(i, i, lagrangian(i) * (Kinv[i].transpose() * (s(i) * w)));  // the factor is symmetric
+                add_gradient(i, j, lagrangian(j) * (Kinv[j].transpose() * (s(j) * w)));
                 if (par.C_hg != 0) {
                     const double c = par.C_hg * kappa1 * s_bond(i, j) * V / b.length[k];
                     t.emplace_back(int(i), j, 2 * c);
