@@ -3,7 +3,7 @@
 // off, the temperature rises by p N_sync(MH) dt / (rho c) at every N_sync(MH)-th mechanical step and
 // not in between, the accumulator holds the heat not yet released and is emptied at each release,
 // the total rise p T / (rho c) does not depend on N_sync(MH), held nodes keep their temperature, the
-// accumulator is part of the checkpoint, and CVODE refuses deposited heat.
+// accumulator is part of the checkpoint, CVODE refuses deposited heat, and N_sync(MH) = 0 releases none.
 #include "pd/core/lattice.hpp"
 #include "pd/heat/agwai.hpp"
 #include "pd/models/pmb.hpp"
@@ -139,5 +139,21 @@ TEST(DissipatedHeat, RefusalsAndBadInput)
     auto field = b.field(dt);
     EXPECT_THROW(field->deposit(std::vector<double>(3, 1.0)), std::invalid_argument);
     Scene<3, DissipatingPMB> scene(b.body, b.bonds, b.model);
-    EXPECT_THROW(scene.set_heat(*field, 0), std::invalid_argument);
+    EXPECT_THROW(scene.set_heat(*field, -1), std::invalid_argument);
+}
+
+// N_sync(MH) = 0, weak coupling: the field follows its own clock and the dissipation never reaches it.
+TEST(DissipatedHeat, ZeroSyncReleasesNothing)
+{
+    Box b;
+    auto field = b.field(dt);
+    Scene<3, DissipatingPMB> scene(b.body, b.bonds, b.model);
+    scene.set_heat(*field, 0);
+    Explicit<3, DissipatingPMB> sim(scene, 7850);
+    sim.start();
+    b.model.heat_per_step = p * dt;
+    for (int n = 1; n <= 20; ++n) sim.step(dt);
+    EXPECT_EQ(field->step, 20);  // the thermal clock ran
+    for (double T : field->theta) EXPECT_EQ(T, theta0);
+    EXPECT_TRUE(sim.scene.accumulated_heat().empty());
 }

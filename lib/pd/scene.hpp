@@ -11,7 +11,9 @@
 //                      With a DissipativeModel (kernel_concepts.hpp) the heat of each committed step is
 //                      accumulated per node, e_abs += step_heat (eq. 3.24), and released into the field
 //                      every N_sync(MH) mechanical steps after the thermal steps, theta += e_abs/(rho c),
-//                      e_abs = 0 (eqs. 3.22-3.23 with erratum E11): set_heat(field, nsync_mh).
+//                      e_abs = 0 (eqs. 3.22-3.23 with erratum E11): set_heat(field, nsync_mh);
+//                      N_sync(MH) = 0: the dissipation is not released (weak coupling: the temperature
+//                      acts on the mechanics, the mechanics not on the temperature).
 // The scene refers to the body, bonds, model, rule and field (kept by reference) but owns its own
 // state (the last positions, e_abs): an integrator built from a scene (Explicit) keeps a copy, so read
 // that state from the integrator's `scene` member.
@@ -99,20 +101,20 @@ public:
 
     bool has_damage_rule() const { return static_cast<bool>(break_bonds_); }
 
-    // Attaches the heat component (kept by reference) with N_sync(MH) >= 1 (header).
+    // Attaches the heat component (kept by reference) with N_sync(MH) >= 1, or 0: no release (header).
     void set_heat(TemperatureField& field, long nsync_mh = 1)
     {
-        if (nsync_mh < 1) throw std::invalid_argument("Scene: N_sync(MH) must be >= 1");
+        if (nsync_mh < 0) throw std::invalid_argument("Scene: N_sync(MH) must be >= 1 (or 0: the dissipation is not released)");
         if (field.theta.size() != body.size()) throw std::invalid_argument("Scene: the temperature field is not of this body");
         heat_ = &field, nsync_mh_ = nsync_mh;
-        if constexpr (DissipativeModel<Model>) e_abs_.assign(body.size(), 0.0);
+        if constexpr (DissipativeModel<Model>) e_abs_.assign(nsync_mh > 0 ? body.size() : 0, 0.0);
     }
     void advance_heat(long n, double dt)
     {
         if (!heat_) return;
         heat_->follow(n, dt);
         if constexpr (DissipativeModel<Model>)
-            if (n % nsync_mh_ == 0) {
+            if (nsync_mh_ > 0 && n % nsync_mh_ == 0) {
                 heat_->deposit(e_abs_);
                 std::fill(e_abs_.begin(), e_abs_.end(), 0.0);
             }

@@ -9,10 +9,12 @@
 // the flight direction +x (its nearest surface point has the same phi), held constant in time (the
 // source: the flux depends only weakly on the surface temperature). Delta_eff = V_shell/(4 pi R^2), the
 // thickness that makes the shell's volume that of a layer on the sphere, so that a uniform Q delivers
-// exactly Q 4 pi R^2. Q(phi): the CFD table of the source exists only as figures (ambiguity 21), so a
-// SURROGATE: the free-molecular / Newtonian law Q = Q_s max(cos phi, 0), whose total power is
-// Q_s pi R^2, or any table given by --flux-table (CSV angle_deg,Q_W_m2; periodic cubic spline with
-// the mirror symmetry, pd/bc/angle_table.hpp). Q_s is not in the source either: the default 6.7e5 W/m^2
+// exactly Q 4 pi R^2 (r is then Q/Delta less 3 % at delta = 0.5 mm and 7 % at 1 mm: Delta_eff/Delta =
+// 1.033, 1.067, the shell lying outside R). Q(phi): the CFD table of the source exists only as figures
+// (ambiguity 21), so a SURROGATE: the free-molecular (hyperthermal) heating law Q = Q_s max(cos phi, 0),
+// whose total power is Q_s pi R^2, or any table given by --flux-table (CSV angle_deg,Q_W_m2, values
+// >= 0; periodic cubic spline with the mirror symmetry, pd/bc/angle_table.hpp; an undershoot of the
+// spline below 0 is cut at 0). Q_s is not in the source either: the default 6.7e5 W/m^2
 // is the flux under which a semi-infinite solid of basalt gains 1070 K at its surface in 10 s
 // (dT = 2 Q sqrt(t/(pi k rho c))), i.e. the source's surface temperature is an input of the
 // surrogate, not a prediction.
@@ -51,7 +53,8 @@ inline void add_meteorite_options(io::Options& opt)
     opt.add_string("flux-table", "", "CSV angle_deg,Q_W_m2 instead of the surrogate law (cubic in angle, symmetric)");
     opt.add("scale", 0, "factor on k and on the flux (by study: thermal 1, spall 1000)");
     opt.add("dt-factor-heat", 0.5, "safety factor on the explicit thermal critical step");
-    for (const char* o : {"E", "rho", "c", "k", "Gc", "radius", "m", "shell-factor", "dt-factor-heat"}) opt.require_positive(o);
+    for (const char* o : {"E", "rho", "c", "k", "Gc", "radius", "shell-factor"}) opt.require_positive(o);
+    opt.require_range("m", 1, 20, false, true), opt.require_range("dt-factor-heat", 0, 1, false, true);
     opt.require_at_least("alpha", 0), opt.require_positive("q-stag");
     opt.require_range("nu", -1, 0.5, false, false);
 }
@@ -67,7 +70,8 @@ inline MeteoriteParams meteorite_params(io::Options& opt, double delta, double s
     MeteoriteParams p{Elastic::from_E_nu(opt.get("E"), opt.get("nu")), opt.get("rho"), opt.get("c"), opt.get("k"), opt.get("alpha"), opt.get("Gc"),
                       opt.get("radius"), delta, opt.get("m"), opt.get("T0"), opt.get("shell-factor"), opt.get("q-stag"), scale,
                       opt.get("dt-factor-heat"), opt.get_string("flux-table")};
-    if (!(p.delta / p.m < p.R)) opt.fail("options --delta, --m: the cell side delta/m must be below --radius");
+    if (!(p.delta / p.m <= 0.25 * p.R)) opt.fail("options --delta, --m, --radius: the cell side delta/m must be at most a quarter of the radius");
+    if (!(p.shell_factor < p.m)) opt.fail("option --shell-factor must be below --m (a thicker shell has nodes without bonds to the body)");
     return p;
 }
 
@@ -91,7 +95,7 @@ struct MeteoriteScene {
         delta_eff = v_shell / (4 * std::numbers::pi * p.R * p.R);
         for (std::size_t i = s.n_body; i < N; ++i) {
             const double phi = angle(i);
-            r[i] = p.scale * (table ? (*table)(phi) : p.q_stag * std::max(std::cos(phi), 0.0)) / delta_eff;
+            r[i] = p.scale * std::max(table ? (*table)(phi) : p.q_stag * std::cos(phi), 0.0) / delta_eff;
             power += r[i] * s.body.volume[i];
         }
         for (std::size_t i = 0; i < s.n_body; ++i) if (norm(s.body.x[i]) < norm(s.body.x[centre])) centre = static_cast<int>(i);
@@ -145,12 +149,15 @@ struct MeteoriteScene {
 };
 
 // The mechanics of the weakly coupled study (sec. 9.2.5): Flanagan-Taylor correspondence with the
-// numerical viscosity of sec. 8.4.2 (eta, one Maxwell branch on the deviator; its dissipation is
-// released as heat by the scene), hourglass control C_hg (assumed: not in the source), thermal
+// numerical viscosity of sec. 8.4.2 (eta, one Maxwell branch on the deviator; weak coupling, sec. 9.2.2:
+// its dissipation is not released as heat, N_sync(MH) = 0), hourglass control C_hg (assumed: not in
+// the source), thermal
 // expansion from the scene's temperatures (shell nodes held at T0), critical stretch s0 of PMB 3D (the
 // source does not state its formula; PMB and MO 3D coincide at nu = 1/4) on the mechanical stretch,
 // the singular-node rule; a free body (the CFD pressure, rho_inf V^2 ~ 3 kPa, is not applied). Heat
-// bonds are the scene's and never break. dt: dt_factor x the Silling-Askari step of PMB.
+// bonds are the scene's and never break. dt: dt_factor x the Silling-Askari step of PMB with the elastic
+// moduli (the branch's instantaneous 9 G relaxes within tau_b, a quarter of the step at delta = 1 mm; a
+// run that becomes unstable stops with the step and node).
 struct MeteoriteMechanics {
     MeteoriteScene& sc;
     Bonds bonds;
@@ -172,7 +179,7 @@ struct MeteoriteMechanics {
         rule.thermal = te;
         sc.field->after_step = [this](const TemperatureField& f) { refresh(f.theta); };
         ex.scene.set_damage(rule);
-        ex.scene.set_heat(*sc.field);
+        ex.scene.set_heat(*sc.field, 0);  // weak coupling: no heat from the mechanics
     }
     static ViscoelasticCorrespondence::Params params(const MaxwellShear& m) { return {m.gamma_b, m.tau_b}; }
     void refresh(const std::vector<double>& theta)
@@ -184,15 +191,26 @@ struct MeteoriteMechanics {
         const double c = PMB::micromodulus({sc.p.mat, 3}, Influence{}, sc.p.delta);
         return dt_factor * critical_step_silling_askari(bonds, std::vector<double>(sc.s.body.size(), sc.p.rho), c).dt;
     }
-    // Mean node damage of the body nodes within `cone` [rad] of the stagnation direction, in bins of
-    // depth R - |x| of width dx (bin b: [b dx, (b + 1) dx)), down to half the radius.
-    std::vector<double> front_damage_profile(const std::vector<double>& phi, double cone) const
+    // Damage of body node i over its bonds to body nodes only (the shell's bonds, which may tear as the
+    // shell detaches, left out): 1 - intact V / all V.
+    double body_damage(std::size_t i) const
     {
-        const std::size_t bins = static_cast<std::size_t>(0.5 * sc.p.R / sc.s.dx);
+        double all = 0, kept = 0;
+        for_family(bonds, i, [&](std::int64_t k, int j) {
+            if (std::size_t(j) >= sc.s.n_body) return;
+            all += bonds.volume[k], kept += bonds.intact[k] ? bonds.volume[k] : 0.0;
+        });
+        return all > 0 ? 1 - kept / all : 0.0;
+    }
+    // Mean body_damage of the body nodes within `cone` [rad] of the stagnation direction, in bins of
+    // depth R - |x| of width dx (bin b: [b dx, (b + 1) dx)), down to half the radius (at least one bin).
+    std::vector<double> front_damage_profile(double cone) const
+    {
+        const std::size_t bins = std::max<std::size_t>(1, static_cast<std::size_t>(0.5 * sc.p.R / sc.s.dx));
         std::vector<double> sum(bins, 0.0), cnt(bins, 0.0);
         for (std::size_t i = 0; i < sc.s.n_body; ++i) {
             const std::size_t b = static_cast<std::size_t>((sc.p.R - norm(sc.s.body.x[i])) / sc.s.dx);
-            if (sc.angle(i) <= cone && b < bins) sum[b] += phi[i], cnt[b] += 1;
+            if (sc.angle(i) <= cone && b < bins) sum[b] += body_damage(i), cnt[b] += 1;
         }
         for (std::size_t b = 0; b < bins; ++b) sum[b] = cnt[b] > 0 ? sum[b] / cnt[b] : 0.0;
         return sum;

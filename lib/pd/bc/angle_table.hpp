@@ -13,6 +13,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_spline.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -50,6 +51,7 @@ public:
     AngleTable(AngleTable&&) noexcept = default;
     AngleTable& operator=(AngleTable&&) noexcept = default;
 
+    double min_value() const { return *std::min_element(y_.begin(), y_.end()); }  // of the table's values
     // The value at phi [rad] from the axis, phi in [0, pi] (folded into it otherwise).
     double operator()(double phi) const
     {
