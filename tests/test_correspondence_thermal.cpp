@@ -242,7 +242,7 @@ TEST(CorrespondenceThermal, TemperatureDependentModuliRescaleTheUnrotatedStress)
     std::fill(theta.begin(), theta.end(), theta_ref);
     C3 c({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
     c.set_thermal_expansion({a0, theta_ref, &theta});
-    c.set_temperature_dependence({.alpha = [&](double th) { return a0 + a1 * (th - theta_ref); }});
+    c.set_temperature_dependence({.material = {}, .alpha = [&](double th) { return a0 + a1 * (th - theta_ref); }});
     for (int step = 1; step <= 2; ++step) {
         std::fill(theta.begin(), theta.end(), theta_ref + step * dT);
         rate_step(c, b, body.x, body.x, dt);
@@ -250,9 +250,9 @@ TEST(CorrespondenceThermal, TemperatureDependentModuliRescaleTheUnrotatedStress)
         EXPECT_LT(max_off(c.sigma, c, s), 1e-12 * std::abs(s)) << "step " << step;
     }
     C3 lin({.material = mat}, body, b);
-    EXPECT_THROW(lin.set_temperature_dependence({.material = moduli}), std::invalid_argument);
+    EXPECT_THROW(lin.set_temperature_dependence({.material = moduli, .alpha = {}}), std::invalid_argument);
     C3 cold({.material = mat, .law = C3::Law::flanagan_taylor}, body, b);
-    EXPECT_THROW(cold.set_temperature_dependence({.material = moduli}), std::invalid_argument);  // no temperatures yet
+    EXPECT_THROW(cold.set_temperature_dependence({.material = moduli, .alpha = {}}), std::invalid_argument);  // no temperatures yet
 }
 
 TEST(CorrespondenceThermal, PlasticCorrespondenceTakesTheMechanicalStrain)
