@@ -5,7 +5,7 @@
 // - AngleTable (pd/bc/angle_table.hpp): the table's values at its own angles, a smooth symmetric
 //   load (cos phi) between them to the error of a cubic spline, zero slope at 0 and 180 deg without
 //   those angles in the table, and the refusals; read_angle_table reads the CSV columns.
-#include "pd/bc/angle_table.hpp"
+#include "pd/io/angle_table_file.hpp"
 #include "problems/common/cut_sphere.hpp"
 #include "scratch_dir.hpp"
 

@@ -20,7 +20,7 @@
 // surrogate, not a prediction.
 // Conduction: Agwai (no thermal correction: heat is conserved to round-off), explicit Euler.
 #pragma once
-#include "pd/bc/angle_table.hpp"
+#include "pd/io/angle_table_file.hpp"
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/heat/agwai.hpp"
 #include "pd/io/options.hpp"

@@ -6,16 +6,13 @@
 // image phi -> 360 deg - phi. Symmetric data give a symmetric spline, so the load is smooth through
 // the stagnation point (phi = 0) and the rear point (phi = 180 deg) with zero slope there, and a
 // table need not hold those two angles.
-// read_angle_table(path, column): a CSV with the column `angle_deg` and the named value column.
+// Reading one from a CSV file: io/angle_table_file.hpp.
 #pragma once
-#include "pd/io/csv.hpp"
-
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_spline.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -67,16 +64,5 @@ private:
     std::vector<double> x_, y_;  // the extended table over one period [deg], [value]
     std::unique_ptr<gsl_spline, Free> spline_;
 };
-
-// The table of a CSV file: column `angle_deg` and the value column; std::runtime_error naming the file.
-inline AngleTable read_angle_table(const std::filesystem::path& path, const std::string& column)
-{
-    const io::CsvTable t = io::read_csv(path);
-    try {
-        return AngleTable(t.numbers("angle_deg"), t.numbers(column));
-    } catch (const std::invalid_argument& e) {
-        throw std::runtime_error(path.string() + ": " + e.what());
-    }
-}
 
 }  // namespace pd
