@@ -10,10 +10,13 @@
 // --study spall (V17): weakly coupled, k and flux x 1000 over 2 ms (= 2 s of the real problem), the
 //   multirate clocks of time/multirate.hpp (conduction every N_sync(MK) mechanical steps, chosen by the
 //   fork's rule), Flanagan-Taylor correspondence with numerical viscosity eta = 3 and critical stretch.
-//   The spall depth: the depth below the front surface of the peak of the mean node damage within
-//   --cone of the stagnation direction (bins of dx), at the instant equivalent to 1 s (1 ms at x 1000,
-//   the source's Figs. 9.27/9.28) and at the end; the source: a crack parallel to the front at a
-//   depth of about delta.
+//   Damage below the front: the mean node damage (over body-body bonds) of the body nodes within --cone
+//   of the stagnation direction, in bins of depth dx (damage_profile.csv), at the instant equivalent to
+//   1 s (1 ms at x 1000, the source's Figs. 9.27/9.28) and at the end. Two depths from it: the spall
+//   depth, the centre of the bin of largest damage, and the damaged depth, the lower edge of the
+//   deepest bin with at least a tenth of that damage (resolution dx = delta/3.05: near delta the
+//   candidates are 0.82 and 1.15 delta, or 0.98 and 1.31 delta). The source: a crack parallel to the
+//   front at a depth of about delta, the detached layer about delta thick.
 // Run: meteorite_entry_3d [--study thermal|spall] [--delta D] [--shell-factor 1] [--quick] [--check]
 //   [--out DIR] (--help: all). Writes history.csv, summary.csv, params.csv (spall: damage_profile.csv).
 #include "pd/core/timer.hpp"
@@ -118,21 +121,28 @@ int spall_study(pd::io::Case& run, pd::MeteoriteScene& sc, double t_end, double 
     sc.field->dt = clocks.dt_thermal;
     std::printf("%ld mechanical steps of %.4g us, conduction every %ld (%.4g us), s0 %.4g, tau_b %.3g us\n", clocks.mech_steps, dt * 1e6,
                 clocks.nsync_mk, clocks.dt_thermal * 1e6, mech.rule.s0, mech.visco.tau_b * 1e6);
-    pd::io::CsvWriter hist(run.file("history.csv"), {"t_s", "T_max_body_C", "T_max_shell_C", "broken_bonds", "damage_max", "spall_depth_m"});
+    pd::io::CsvWriter hist(run.file("history.csv"), {"t_s", "T_max_body_C", "T_max_shell_C", "broken_bonds", "damage_max", "spall_depth_m",
+                                                     "damaged_depth_m"});
     pd::io::CsvWriter prof(run.file("damage_profile.csv"), {"t_s", "depth_m", "damage_mean"});
     const double t_fig = 1.0 / sc.p.scale;  // the instant equivalent to 1 s of the real problem (1 ms at x 1000); none beyond t_end
-    double depth_fig = NAN, depth_end = NAN, phi_max = 0;
+    double depth_fig = NAN, depth_end = NAN, layer_fig = NAN, layer_end = NAN, phi_max = 0;
     bool unstable = false, fig_written = false;
     auto depth_of = [&](const std::vector<double>& prof_b) {  // header; nan while no bond of the cone has broken
         const auto peak = std::max_element(prof_b.begin(), prof_b.end());
         return *peak > 0 ? (double(peak - prof_b.begin()) + 0.5) * sc.s.dx : NAN;
+    };
+    auto layer_of = [&](const std::vector<double>& prof_b) {  // header; nan while no bond of the cone has broken
+        const double top = *std::max_element(prof_b.begin(), prof_b.end());
+        double depth = NAN;
+        for (std::size_t b = 0; b < prof_b.size() && top > 0; ++b) if (prof_b[b] >= 0.1 * top) depth = double(b + 1) * sc.s.dx;
+        return depth;
     };
     pd::io::Timer timer;
     double wall_steps = 0;
     long steps_here = 0;
     auto state = [&](pd::StateArchive& ar) {
         mech.ex.state(ar), hist.state(ar), prof.state(ar), timer.state(ar, "wall");
-        ar("depth_fig", depth_fig), ar("fig_written", fig_written);
+        ar("depth_fig", depth_fig), ar("layer_fig", layer_fig), ar("fig_written", fig_written);
         mech.refresh(sc.field->theta);  // a loaded field: the expansion's temperatures follow it
     };
     try {
@@ -146,11 +156,11 @@ int spall_study(pd::io::Case& run, pd::MeteoriteScene& sc, double t_end, double 
             const pd::MeteoriteScene::Temperatures T = sc.temperatures();
             phi_max = 0;
             for (std::size_t i = 0; i < sc.s.n_body; ++i) phi_max = std::max(phi_max, mech.body_damage(i));
-            depth_end = depth_of(profile);
-            hist.row({mech.ex.t, T.body_max, T.shell_max, double(mech.ex.broken_bonds), phi_max, depth_end});
+            depth_end = depth_of(profile), layer_end = layer_of(profile);
+            hist.row({mech.ex.t, T.body_max, T.shell_max, double(mech.ex.broken_bonds), phi_max, depth_end, layer_end});
             if (fig || n == clocks.mech_steps) {
                 for (std::size_t b = 0; b < profile.size(); ++b) prof.row({mech.ex.t, (double(b) + 0.5) * sc.s.dx, profile[b]});
-                if (fig) depth_fig = depth_end, fig_written = true;
+                if (fig) depth_fig = depth_end, layer_fig = layer_end, fig_written = true;
             }
             return true;
         });
@@ -161,7 +171,9 @@ int spall_study(pd::io::Case& run, pd::MeteoriteScene& sc, double t_end, double 
     const double us_per_node_step = wall_steps * 1e6 * pd::max_threads() / (double(std::max(steps_here, 1L)) * double(sc.s.body.size()));
     const double d = sc.p.delta;
     run.summary_observed({{"spall_depth_1s", depth_fig, d, pd::io::relative_error(depth_fig, d), "m"},
-                          {"spall_depth_end", depth_end, d, pd::io::relative_error(depth_end, d), "m"}});
+                          {"spall_depth_end", depth_end, d, pd::io::relative_error(depth_end, d), "m"},
+                          {"damaged_depth_1s", layer_fig, d, pd::io::relative_error(layer_fig, d), "m"},
+                          {"damaged_depth_end", layer_end, d, pd::io::relative_error(layer_end, d), "m"}});
     mesh_rows(run, sc);
     run.summary({{"damage_max", phi_max, NAN, NAN, "-"},
                  {"broken_bonds", double(mech.ex.broken_bonds), NAN, NAN, "-"},
