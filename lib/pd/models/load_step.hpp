@@ -90,8 +90,7 @@ public:
     {
         ar(name + ".y_c", y_c_);
         ar.blocks(name + ".sigma_hat_c", sigma_hat_c_), ar.blocks(name + ".R_c", R_c_), ar.blocks(name + ".V_c", V_c_);
-        if constexpr (has_theta_n)
-            if (!theta_n_c_.empty()) ar(name + ".theta_n_c", theta_n_c_);
+        if constexpr (has_theta_n) ar(name + ".theta_n_c", theta_n_c_);  // empty without thermal expansion
     }
 
     Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const { return model.bond_force(i, k, j, Y); }
