@@ -236,7 +236,7 @@ TEST(CorrespondenceThermal, TemperatureDependentModuliRescaleTheUnrotatedStress)
         err = std::max(err, (m.sigma_hat[i] - expect).cwiseAbs().maxCoeff()), scale = std::max(scale, before[i].cwiseAbs().maxCoeff());
     }
     EXPECT_GT(scale, 1e6);
-    EXPECT_LT(err, 1e-12 * scale);
+    EXPECT_LT(err, 1e-12 * scale);  // a few roundings of a 3x3 scaling (the increment is zero: d = 0)
     // alpha(theta) linear, constant moduli: two heating steps of dT from theta_ref on a clamped body.
     const double a0 = alpha, a1 = 2e-3 * alpha;  // alpha = a0 + a1 (theta - theta_ref)
     std::fill(theta.begin(), theta.end(), theta_ref);
@@ -247,7 +247,7 @@ TEST(CorrespondenceThermal, TemperatureDependentModuliRescaleTheUnrotatedStress)
         std::fill(theta.begin(), theta.end(), theta_ref + step * dT);
         rate_step(c, b, body.x, body.x, dt);
         const double T = step * dT, s = -3 * mat.K * (a0 * T + 0.5 * a1 * T * T);  // -3 K int alpha dtheta
-        EXPECT_LT(max_off(c.sigma, c, s), 1e-12 * std::abs(s)) << "step " << step;
+        EXPECT_LT(max_off(c.sigma, c, s), 1e-12 * std::abs(s)) << "step " << step;  // round-off of two increments
     }
     C3 lin({.material = mat}, body, b);
     EXPECT_THROW(lin.set_temperature_dependence({.material = moduli, .alpha = {}}), std::invalid_argument);

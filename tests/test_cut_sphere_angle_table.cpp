@@ -40,12 +40,15 @@ TEST(CutSphere, VolumesAreThoseOfTheSphereAndTheShell)
                 EXPECT_LE(s.body.volume[i], dx * dx * dx * (1 + 1e-12));
             }
         }
+        // Tolerances: the cut cells' 32 x 32 midpoint rule across the chords (its integrand has a square-root
+        // edge where the sphere leaves a cell row), measured 1.5e-5 (body), 1.8e-5 and 1.9e-4 (shell of dx
+        // and dx/10) and 1e-6 to 3e-6 (all with the dropped parts); each bound is 10 to 100 times that.
         const double Vb = 4 * pi * R * R * R / 3, Vs = 4 * pi * (std::pow(R + shell, 3) - R * R * R) / 3;
-        EXPECT_LT(std::abs(vb + s.dropped_volume * (vb / (vb + vs)) - Vb) / Vb, 2e-4) << "shell " << shell;
+        EXPECT_LT(std::abs(vb - Vb) / Vb, 2e-4) << "shell " << shell;
         EXPECT_LT(std::abs(vb + vs + s.dropped_volume - Vb - Vs) / (Vb + Vs), 1e-4) << "shell " << shell;
         EXPECT_LT(std::abs(vs - Vs) / Vs, 2e-2) << "shell " << shell;
         EXPECT_LT(s.dropped_volume, 1e-3 * Vs);
-        for (double m : {mx, my, mz}) EXPECT_LT(std::abs(m), 1e-12 * Vb * R);
+        for (double m : {mx, my, mz}) EXPECT_LT(std::abs(m), 1e-12 * Vb * R);  // symmetric grid: cancels to round-off
         EXPECT_GT(s.cut_cells, 0);
         EXPECT_EQ(s.surface.size(), s.n_body);
         EXPECT_GT(s.body.size(), s.n_body);

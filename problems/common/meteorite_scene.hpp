@@ -81,15 +81,16 @@ struct MeteoriteScene {
     CutSphere s;
     Bonds heat_bonds;
     double delta_eff = 0, power = 0;  // shell thickness of the heat input [m], total heat input [W]
-    std::vector<double> r;            // heat input per node [W/m^3]
     int centre = 0;                   // the node at the centre
     std::unique_ptr<ConductingField<Agwai>> field;
 
     MeteoriteScene(const MeteoriteParams& par, const std::optional<AngleTable>& table)
-        : p(par), s(cut_sphere(p.R, p.delta / p.m, p.shell_factor * p.delta / p.m)), heat_bonds(build_bonds(s.body, p.delta, shell_cut())),
-          r(s.body.size(), 0.0)
+        : p(par), s(cut_sphere(p.R, p.delta / p.m, p.shell_factor * p.delta / p.m)), heat_bonds(build_bonds(s.body, p.delta, shell_cut()))
     {
         const std::size_t N = s.body.size();
+        HeatLoads loads;
+        std::vector<double>& r = loads.source;  // heat input per node [W/m^3]
+        r.assign(N, 0.0);
         double v_shell = 0;
         for (std::size_t i = s.n_body; i < N; ++i) v_shell += s.body.volume[i];
         delta_eff = v_shell / (4 * std::numbers::pi * p.R * p.R);
@@ -99,8 +100,6 @@ struct MeteoriteScene {
             power += r[i] * s.body.volume[i];
         }
         for (std::size_t i = 0; i < s.n_body; ++i) if (norm(s.body.x[i]) < norm(s.body.x[centre])) centre = static_cast<int>(i);
-        HeatLoads loads;
-        loads.source = r;
         field = std::make_unique<ConductingField<Agwai>>(Agwai({.k = p.scale * p.k}, s.body, heat_bonds), heat_bonds,
                                                          std::vector<double>(N, p.rho * p.c), loads, std::vector<double>(N, p.T0),
                                                          HeatIntegrator::explicit_euler, 1.0);

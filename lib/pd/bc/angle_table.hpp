@@ -16,7 +16,6 @@
 #include <memory>
 #include <numbers>
 #include <stdexcept>
-#include <string>
 #include <vector>
 
 namespace pd {

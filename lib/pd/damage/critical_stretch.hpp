@@ -126,16 +126,15 @@ private:
 #pragma omp parallel for schedule(static) reduction(+ : broken)
         for (long i = 0; i < static_cast<long>(b.nodes()); ++i) {
             if (!no_fail.empty() && no_fail[i]) continue;
-            for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-                const int j = b.partner[k];
-                if (j < i) continue;
+            for_family(b, i, [&](std::int64_t k, int j) {
+                if (j < i) return;
                 const std::int64_t r = b.reverse[k];
                 const int halves = intact[k] + intact[r];
-                if (halves == 0 || (!no_fail.empty() && no_fail[j])) continue;
+                if (halves == 0 || (!no_fail.empty() && no_fail[j])) return;
                 const double L = b.length[k];
                 const double rest = thermal.active() ? L * (1 + thermal.pair_strain(i, j)) : L;
                 if ((norm(y[j] - y[i]) - rest) / L > s0_of(k)) intact[k] = intact[r] = 0, broken += halves;
-            }
+            });
         }
         return broken;
     }

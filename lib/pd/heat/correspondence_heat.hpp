@@ -109,7 +109,8 @@ struct CorrespondenceHeat {
             Col sum = Col::Zero();
             for_intact_bonds(b, i, [&](std::int64_t k, int j) { sum += b.omega[k] * b.volume[k] * (theta[j] - theta[i]) * xi(i, j); });
             g[i] = Kinv[i] * sum;
-            a[i] = deformation ? Col(Kinv[i] * ((par.k * s(i)) * (lagrangian(i) * g[i]))) : Col(Kinv[i] * ((par.k * s(i)) * g[i]));
+            const Col grad = deformation ? Col(lagrangian(i) * g[i]) : g[i];  // (2.82); the undeformed g as it is
+            a[i] = Kinv[i] * ((par.k * s(i)) * grad);
         });
     }
 

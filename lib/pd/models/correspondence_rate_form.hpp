@@ -50,18 +50,9 @@ void Correspondence<D>::update_stress(const Bonds& b, const Field<Dy>& y, const 
     const bool damaged = b.has_damage();
     if (damaged) k_formed_.track(b);
     parallel_for(b.nodes(), [&](std::size_t i) {
-        Mat N[2], Ks;  // F K, Fdot K, K over intact bonds
-        Col m;
-        if (damaged && k_formed_.unchanged(b, i)) {  // K^-1 and m as last formed
-            family_sums<true, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
-        } else if (damaged) {
-            family_sums<true, true, 2>(b, i, {&y, &v}, N, &Ks, &m);
-            Kinv[i] = inverse_or_zero(Ks);
-            for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
-            k_formed_.formed(b, i);
-        } else {
-            family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
-        }
+        Mat N[2];  // F K, Fdot K over intact bonds
+        if (damaged) damaged_sums<2>(b, i, {&y, &v}, N);
+        else family_sums<false, false, 2>(b, i, {&y, &v}, N, nullptr, nullptr);
         double d_eps_th = 0, th0 = 0, th1 = 0;
         if (!theta_n.empty()) {  // thermal expansion: theta^n -> theta^(n+1), also where K is singular
             th0 = theta_n[i], th1 = (*thermal.theta)[i];

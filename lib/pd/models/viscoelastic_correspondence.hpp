@@ -12,8 +12,9 @@
 // response is the elastic K. Thermal expansion (the wrapped model's set_thermal_expansion) enters step 1
 // as the increment alpha (theta - theta^n) I of eq. 2.81 (LoadStep restores theta^n with sigma_hat, so
 // repeated trials take it whole); isotropic, it leaves s_hat and the branch alone. In the strain form
-// of laws/maxwell.hpp, x = s_hat/(2G) and the branch modulus is 2 G gamma_b (q = 2 G gamma_b h); the dissipated energy of the step per node [J/m^3] is
-// (2 G gamma_b / tau_b) int (x - h):(x - h) dt, exact per step.
+// of laws/maxwell.hpp, x = s_hat/(2G) and the branch modulus is 2 G gamma_b (q = 2 G gamma_b h); the
+// dissipated energy of the step per node [J/m^3] is (2 G gamma_b / tau_b) int (x - h):(x - h) dt,
+// exact per step.
 // History protocol (as models/viscoelastic_lps.hpp): point_pass(bonds, y, dt) = trial
 // state at y from the committed state (sigma_hat, R, V, q, s_hat, configuration y_c; no accumulation),
 // commit() after each accepted step (time/verlet.hpp calls both). The Flanagan-Taylor update runs over
