@@ -1,10 +1,12 @@
-// Shared set-up of the correspondence tests (test_correspondence.cpp,
-// test_correspondence_flanagan_taylor.cpp): lattice spacing, horizon, steel and affine maps y = A x + c.
+// Shared set-up of the correspondence tests (test_correspondence.cpp, test_correspondence_damaged_pass.cpp,
+// test_correspondence_flanagan_taylor.cpp): lattice spacing, horizon, steel, affine maps y = A x + c and
+// random matrices near I.
 #pragma once
 
 #include "pd/models/correspondence.hpp"
 
 #include <cstddef>
+#include <random>
 
 namespace pd_test::correspondence_fixtures {
 
@@ -27,6 +29,15 @@ Field<D> affine(const Body<D>& body, const Eigen::Matrix<double, D, D>& A, const
             y.c[a][i] = s;
         }
     return y;
+}
+
+// I plus entries uniform in [-amplitude, amplitude].
+inline M3 random_matrix(std::mt19937& gen, double amplitude)
+{
+    std::uniform_real_distribution<double> U(-amplitude, amplitude);
+    M3 A;
+    for (int a = 0; a < 3; ++a) for (int b = 0; b < 3; ++b) A(a, b) = (a == b) + U(gen);
+    return A;
 }
 
 }  // namespace pd_test::correspondence_fixtures

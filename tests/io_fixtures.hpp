@@ -1,5 +1,5 @@
-// Scratch files of the io tests (test_io.cpp, test_io_options.cpp): a path in the running test's
-// scratch directory, a whole file, its first line.
+// Scratch files of the io tests (test_io.cpp, test_io_csv.cpp, test_io_options.cpp): a path in the
+// running test's scratch directory, a whole file, its first line.
 #pragma once
 
 #include "scratch_dir.hpp"

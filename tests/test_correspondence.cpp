@@ -2,7 +2,8 @@
 // maps at every node, zero hourglass force for affine maps, the linear-elastic stress of a uniform
 // strain, zero force under translation, F = R under rotation, force balance, thread independence,
 // the checkerboard zero-energy mode with and without Littlewood control (Flanagan-Taylor
-// objectivity under a finite rotation: test_correspondence_flanagan_taylor.cpp).
+// objectivity under a finite rotation: test_correspondence_flanagan_taylor.cpp; the damaged point
+// pass: test_correspondence_damaged_pass.cpp).
 #include "pd/bond_loop.hpp"
 #include "pd/models/correspondence.hpp"
 
@@ -20,13 +21,6 @@ using namespace pd;
 using namespace pd_test::correspondence_fixtures;
 
 namespace {
-M3 random_matrix(std::mt19937& gen, double amplitude)
-{
-    std::uniform_real_distribution<double> U(-amplitude, amplitude);
-    M3 A;
-    for (int a = 0; a < 3; ++a) for (int b = 0; b < 3; ++b) A(a, b) = (a == b) + U(gen);
-    return A;
-}
 double max_abs(const Field<3>& f, const std::vector<int>& nodes)
 {
     double r = 0;
@@ -255,60 +249,4 @@ TEST(Correspondence, CheckerboardZeroEnergyModeAndHourglassControl)
     EXPECT_LT(f0_max, 1e-9 * f1_min / 0.02);  // unresisted by the correspondence forces
     EXPECT_LT(W_max, 1e-12 * W_ref);
     EXPECT_GT(f1_min, 0.0);
-}
-
-// The damaged point pass forms K and m again only for the families whose intact flags changed since
-// it last formed them, and keeps them elsewhere: after pairs of the centre node break between two
-// passes, every node's K^-1, m, F and P equal (bit for bit) those of a model built on the damaged bonds.
-TEST(Correspondence, DamagedPassReformsTheShapeTensorsOfChangedFamiliesOnly)
-{
-    const Body<3> body = box<3>({{0, 0, 0}}, {{6 * dx, 6 * dx, 6 * dx}}, dx);
-    Bonds b = build_bonds(body, m_ratio * dx);
-    b.enable_damage();
-    std::mt19937 gen(7);
-    const Field<3> y = affine<3>(body, random_matrix(gen, 1e-3), Eigen::Vector3d::Zero());
-    Correspondence<3> model({.material = steel}, body, b);
-    model.point_pass(b, y);
-    const int c = 3 + 6 * (3 + 6 * 3);
-    int q = 0;
-    for_family(b, c, [&](std::int64_t k, int) { if (q++ % 3 == 0) b.break_pair(k); });
-    model.point_pass(b, y);
-    Correspondence<3> fresh({.material = steel}, body, b);
-    fresh.point_pass(b, y);
-    const Correspondence<3> intact_model({.material = steel}, body, build_bonds(body, m_ratio * dx));
-    EXPECT_FALSE(intact_model.Kinv[c] == model.Kinv[c]);  // the breaks did change the centre's K
-    for (std::size_t i = 0; i < body.size(); ++i) {
-        ASSERT_TRUE(model.Kinv[i] == fresh.Kinv[i]) << i;
-        ASSERT_TRUE(model.F[i] == fresh.F[i]) << i;
-        ASSERT_TRUE(model.P[i] == fresh.P[i]) << i;
-        for (int d = 0; d < 3; ++d) ASSERT_EQ(model.m_xi.c[d][i], fresh.m_xi.c[d][i]) << i;
-    }
-}
-
-// The same reuse in the Flanagan-Taylor update of a damaged body: after pairs of the centre node break
-// between two updates, every node's K^-1 and m equal those of a model built on the damaged bonds and
-// updated once.
-TEST(Correspondence, FlanaganTaylorDamagedUpdateReformsTheShapeTensorsOfChangedFamiliesOnly)
-{
-    using C3 = Correspondence<3>;
-    const Body<3> body = box<3>({{0, 0, 0}}, {{6 * dx, 6 * dx, 6 * dx}}, dx);
-    Bonds b = build_bonds(body, m_ratio * dx);
-    b.enable_damage();
-    std::mt19937 gen(11);
-    const Field<3> y = affine<3>(body, random_matrix(gen, 1e-3), Eigen::Vector3d::Zero());
-    const Field<3> v(body.size());
-    C3 model({.material = steel, .law = C3::Law::flanagan_taylor}, body, b);
-    model.update_stress(b, y, v, 1e-8);
-    const int c = 3 + 6 * (3 + 6 * 3);
-    int q = 0;
-    for_family(b, c, [&](std::int64_t k, int) { if (q++ % 3 == 0) b.break_pair(k); });
-    model.update_stress(b, y, v, 1e-8);
-    C3 fresh({.material = steel, .law = C3::Law::flanagan_taylor}, body, b);
-    fresh.update_stress(b, y, v, 1e-8);  // K formed by the same pass (another pass may round differently)
-    const C3 intact_model({.material = steel, .law = C3::Law::flanagan_taylor}, body, build_bonds(body, m_ratio * dx));
-    EXPECT_FALSE(intact_model.Kinv[c] == model.Kinv[c]);
-    for (std::size_t i = 0; i < body.size(); ++i) {
-        ASSERT_TRUE(model.Kinv[i] == fresh.Kinv[i]) << i;
-        for (int d = 0; d < 3; ++d) ASSERT_EQ(model.m_xi.c[d][i], fresh.m_xi.c[d][i]) << i;
-    }
 }

@@ -1,14 +1,12 @@
 // Thermal expansion of the ordinary models (models/thermal_expansion.hpp; spec/000a eq. 2.80 with
-// erratum E9, verification case V7) for PMB, LPS, LPS with SCF and PALS, on a bar long enough for the
-// chunk path (nodes 3 .. 16 of each 20-node row):
+// erratum E9, verification case V7) for PMB, LPS, LPS with SCF and PALS:
 // - a free body at y = (1 + eps) x with eps = alpha dtheta carries no force, also with broken bonds;
 // - a body held at y = x has the dilatation -3 eps at every node and the energy density of a fully
 //   constrained classical body, 9/2 K eps^2 (pressure 3 K eps, V7's hydrostatic -3 K alpha dtheta);
-// - theta = theta_ref everywhere gives the isothermal forces bit for bit;
-// - under a non-uniform temperature the force is still minus the gradient of the energy, and the
-//   chunk path agrees with the per-node path;
+// - critical stretch compares the mechanical stretch;
 // - the viscoelastic and plastic wrappers: free expansion carries no force, a clamped body the force of
-//   the wrapped elastic model.
+//   the wrapped elastic model; the refusals.
+// (Forces under a temperature field, the chunk path: test_thermal_expansion_forces.cpp.)
 #include "pd/bond_loop.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/damage/critical_stretch.hpp"
@@ -21,54 +19,18 @@
 
 #include <gtest/gtest.h>
 
-#include "energy_gradient.hpp"
+#include "thermal_expansion_fixtures.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
 
 using namespace pd;
-
-namespace {
-constexpr double dx = 1e-3, alpha = 1.2e-5, theta_ref = 293.15, heat = 50;  // [m], [1/K], [K], [K]
-const Elastic mat = Elastic::from_E_nu(200e9, 0.25);
-
-Body<3> bar() { return box<3>({{0, 0, 0}}, {{20 * dx, 5 * dx, 4 * dx}}, dx); }
-
-Field<3> scaled(const Body<3>& body, double s)
-{
-    Field<3> y = body.x;
-    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v *= s;
-    return y;
-}
-double max_norm(const Field<3>& f)
-{
-    double m = 0;
-    for (std::size_t i = 0; i < f.size(); ++i) m = std::max(m, norm(f[i]));
-    return m;
-}
-// The models on b, each with thermal expansion from theta (null: none): PMB, LPS (intact and
-// reference weighted volume), LPS+SCF and PALS.
-template <class Fn>
-void for_each_model(const Bonds& b, const Body<3>& body, const std::vector<double>* theta, Fn&& fn)
-{
-    const ThermalExpansion t{alpha, theta_ref, theta};
-    PMB pmb({mat, 3}, b);
-    LPS lps({mat, 3}, b), scf({mat, 3}, b), ref({mat, 3, Plane::strain, LPS::Params::WeightedVolume::reference}, b);
-    PALS pals({.material = mat}, body, b);
-    scf.apply_shear_correction(body.x);
-    if (theta) pmb.set_thermal_expansion(t), lps.set_thermal_expansion(t), scf.set_thermal_expansion(t), ref.set_thermal_expansion(t);
-    if (theta) pals.set_thermal_expansion(t);
-    fn("PMB", pmb);
-    fn("LPS", lps);
-    fn("LPS+SCF", scf);
-    fn("LPS reference m", ref);
-    fn("PALS", pals);
-}
-}  // namespace
+using namespace pd_test::thermal_expansion_fixtures;
 
 TEST(ThermalExpansion, FreeExpansionCarriesNoForce)
 {
@@ -170,74 +132,6 @@ TEST(ThermalExpansion, CriticalStretchComparesTheMechanicalStretch)
             const long broken = rule.apply(b, scaled(body, 1 + eps + pull));
             EXPECT_EQ(broken, thermal && pull == 0 ? 0 : static_cast<long>(b.size())) << "pull " << pull << (thermal ? ", thermal" : "");
         }
-}
-
-TEST(ThermalExpansion, ReferenceTemperatureGivesTheIsothermalForcesBitForBit)
-{
-    const Body<3> body = bar();
-    Bonds b = build_bonds(body, 3 * dx);
-    const std::vector<double> theta(body.size(), theta_ref);
-    std::mt19937 gen(3);
-    std::uniform_real_distribution<double> U(-1e-6, 1e-6);
-    Field<3> y = body.x;
-    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
-    std::vector<Field<3>> iso;
-    for_each_model(b, body, nullptr, [&](const char*, auto& model) { internal_force(model, b, y, iso.emplace_back()); });
-    int q = 0;
-    for_each_model(b, body, &theta, [&](const char* name, auto& model) {
-        Field<3> f;
-        internal_force(model, b, y, f);
-        for (int d = 0; d < 3; ++d) EXPECT_EQ(f.c[d], iso[q].c[d]) << name;
-        ++q;
-    });
-}
-
-// E = sum_i W_i V_i with the temperatures held: central differences at a corner, a surface and a
-// bulk node. Tolerance 1e-6 of |f_i V_i| (step 1e-9 m against displacements 1e-7 m, thermal
-// extensions ~1e-7 m; as LPS_SCF.ForceIsEnergyGradientWithNonUniformSCF).
-TEST(ThermalExpansion, ForceIsEnergyGradientUnderATemperatureField)
-{
-    const double h = 1e-9;
-    const Body<3> body = box<3>({{0, 0, 0}}, {{6 * dx, 6 * dx, 6 * dx}}, dx);
-    Bonds b = build_bonds(body, 3 * dx);
-    std::mt19937 gen(11);
-    std::uniform_real_distribution<double> U(-1e-7, 1e-7), T(-10, 10);
-    std::vector<double> theta(body.size());
-    for (auto& t : theta) t = theta_ref + heat + T(gen);
-    Field<3> y = body.x;
-    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
-    for_each_model(b, body, &theta, [&](const char* name, auto& model) {
-        pd_test::expect_force_is_energy_gradient(model, b, body, y, {0, 2 + 2 * 6, 2 + 2 * 6 + 3 * 36}, h, 1e-6, name);
-    });
-}
-
-// The chunk path (undamaged bonds) against the per-node path (the same bonds with damage enabled and
-// none broken) under a non-uniform temperature: the same terms summed in another order, so equal to
-// round-off (1e-12 of the largest force).
-TEST(ThermalExpansion, ChunkedAndPerNodePathsAgreeUnderATemperatureField)
-{
-    const Body<3> body = bar();
-    Bonds chunked = build_bonds(body, 3 * dx), per_node = chunked;
-    per_node.enable_damage();
-    std::mt19937 gen(7);
-    std::uniform_real_distribution<double> T(-10, 10), U(-1e-7, 1e-7);
-    std::vector<double> theta(body.size());
-    for (auto& t : theta) t = theta_ref + heat + T(gen);
-    Field<3> y = body.x;
-    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
-    std::vector<Field<3>> ref;
-    for_each_model(per_node, body, &theta, [&](const char*, auto& model) { internal_force(model, per_node, y, ref.emplace_back()); });
-    int q = 0;
-    for_each_model(chunked, body, &theta, [&](const char* name, auto& model) {
-#ifdef PD_CHUNK_WIDTH
-        ASSERT_FALSE(model.runs.chunk_start.empty()) << name << ": no chunks on this bar";
-#endif
-        Field<3> f;
-        internal_force(model, chunked, y, f);
-        const double scale = max_norm(ref[q]);
-        for (std::size_t i = 0; i < body.size(); ++i) EXPECT_LE(norm(f[i] - ref[q][i]), 1e-12 * scale) << name << " node " << i;
-        ++q;
-    });
 }
 
 TEST(ThermalExpansion, RefusesATemperatureFieldOfAnotherBody)
