@@ -16,8 +16,8 @@
 //   micromodulus of --calibration (exact bound for PMB, the source's stand-in for LPS), rounded down
 //   so that t_end is a whole number of samples and steps.
 // Integrators: velocity Verlet (default) or --integrator newmark (beta 1/4, gamma 1/2, time/newmark.hpp)
-//   at dt = --newmark-dt x dt_SA (one run: bar_modes_run.hpp); the study mode also compares both at N
-//   (bar_integrators.hpp).
+//   at dt = --newmark-dt x dt_SA; the study mode also compares both at N (the run and the comparison:
+//   problems/common/fixed_free_bar.hpp).
 // Run: bar_modes_1d [--N 200 --model lps|pmb] [--m 3] [--integrator verlet|newmark] [--quick] [--check]
 //   default: both studies, the stability sweep and the integrator comparison; --N n: one run of --model.
 // Writes: convergence.csv, stability.csv, integrators.csv, summary.csv, history.csv (tip: PD, exact,
@@ -26,11 +26,9 @@
 #include "pd/io/case.hpp"
 #include "pd/io/convergence.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "problems/common/fixed_free_bar.hpp"
 #include "problems/common/stability_sweep.hpp"
 #include "reference/bar_1d_scores.hpp"
-
-#include "bar_integrators.hpp"
-#include "bar_modes_run.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -50,9 +48,8 @@ constexpr double guard_periods = 4;   // stability runs: 4 T1 = 884/factor steps
 constexpr double search_tol = 0.005;  // threshold bisection to 0.5 %
 constexpr double search_max = 8;      // search up to 8 dt_SA (LPS interior von Neumann limit: 2.9)
 
-using bar_modes::Bar;
-using bar_modes::Run;
-using bar_modes::run_pd;
+using Bar = pd::FixedFreeBar;
+using Run = pd::FixedFreeBarRun;
 
 }  // namespace
 
@@ -97,7 +94,8 @@ static int run_case(int argc, char** argv)
     if (t_end < 3 / bar.f1) opt.fail("option --t-end must be >= 3 T1 = " + std::to_string(3 / bar.f1) + " s (frequency fit)");
     std::printf("bar_modes_1d: f1 = c/(4l) = %.3f Hz, T1 = %.5g s, t_end = %.5g s\n", bar.f1, 1 / bar.f1, t_end);
     run.start();
-    // 2-5. The runs; run_pd does 2. lattice and families, 3. model and dt, 4. clamp and u0, 5. Verlet.
+    // 2.-5. The runs (problems/common/fixed_free_bar.hpp): 2. lattice of the bar and its clamp layer,
+    // families; 3. model, dt from dt_SA; 4. clamp held, u0 = eps0 x; 5. integration, tip sampled.
     std::vector<std::tuple<std::string, std::string, int, int>> runs;  // study, model, N, m
     const std::vector<int> N_list = quick ? std::vector{20, 40, 80} : std::vector{10, 50, 100, 200, 500, 1000};
     for (const char* mod : {"lps", "pmb"})
@@ -115,7 +113,7 @@ static int run_case(int argc, char** argv)
     double f1_cvode = NAN, dx_cvode = NAN;                              // the finest CVODE FE record
     char verdict[200] = "";
     for (const auto& [study, mod, n, mm] : runs) {
-        const Run r = run_pd(bar, mod, n, mm, dt_scale, t_end, false);
+        const Run r = pd::release_fixed_free_bar(bar, mod, n, mm, dt_scale, t_end, false);
         const pd::ref::BarScores s = scorer.score(r.t_s, r.tip_m, r.x_tip, n, study != "m");
         table.add({.dx_m = r.dx, .delta_m = r.delta, .m = double(mm), .nodes = r.nodes, .bonds = r.bonds, .error = s.E1,
                    .wall_s = r.wall_s, .labels = {study, mod},
@@ -129,7 +127,7 @@ static int run_case(int argc, char** argv)
             for (std::size_t j = 0; j < r.t_s.size(); ++j) csv.row({r.t_s[j], r.tip_m[j], s.exact[j], s.fe[j]});
         }
     }
-    // 6. Compare with the references, write, print (the stability sweep first in the study mode).
+    // 6. Compare with the references, write, print; the study mode adds 7. and 8.
     table.print(std::cout);
     const auto& [rf, sf] = finest.begin()->second;  // "lps" sorts first
     run.summary({
@@ -150,13 +148,13 @@ static int run_case(int argc, char** argv)
     if (!std::isnan(f1_cvode))
         run.check(std::abs(f1_cvode / bar.f1 - 1) <= 2 * kdx * kdx / 24, "CVODE FE f1 within 2 (k1 dx)^2/24 of c/(4l)");
     if (!single) {
-        // Stability: dt = factor * dt_SA exactly (no safety), N cells, 4 T1; threshold by bisection.
+        // 7. Stability: dt = factor * dt_SA exactly (no safety), N cells, 4 T1; threshold by bisection.
         std::vector<std::pair<std::string, pd::io::StabilityResult>> stab;
         for (const char* mod : {"pmb", "lps"}) {
             auto at_factor = [&](double f) {
                 Bar explicit_bar = bar;  // the stability limit is the explicit one
                 explicit_bar.newmark = false;
-                const Run r = run_pd(explicit_bar, mod, N, m, f, guard_periods / bar.f1, true);
+                const Run r = pd::release_fixed_free_bar(explicit_bar, mod, N, m, f, guard_periods / bar.f1, true);
                 return pd::io::StabilityPoint{f, r.dt, r.dt_crit, r.growth, r.unstable_step < 0, r.unstable_step};
             };
             const std::vector<double> factors = {0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3};
@@ -184,17 +182,17 @@ static int run_case(int argc, char** argv)
                       rate_lps, rate_pmb, thr_lps, thr_pmb);
     }
     if (!single) {
-        // Integrators side by side (LPS, N, same window): Verlet at its standard step, Newmark at the same
+        // 8. Integrators side by side (LPS, N, same window): Verlet at its standard step, Newmark at the same
         // step and beyond the explicit limit (LPS, N = 100: 1.99 dt_SA); records of >= 24 samples per T1.
-        const auto rows = bar_modes::compare_integrators({{false, dt_factor * safety}, {true, dt_factor * safety}, {true, 4}, {true, 12}},
+        const auto rows = pd::compare_bar_integrators({{false, dt_factor * safety}, {true, dt_factor * safety}, {true, 4}, {true, 12}},
             bar.f1, [&](bool newmark, double f) {
                 Bar b = bar;
                 b.newmark = newmark;
                 b.samples = std::min(samples, static_cast<int>(1 / (bar.f1 * f * rf.dt_crit)));
-                return run_pd(b, "lps", N, m, f, t_end, false);
+                return pd::release_fixed_free_bar(b, "lps", N, m, f, t_end, false);
             }, [&](const Run& r) { return scorer.score(r.t_s, r.tip_m, r.x_tip, N, false); });
-        bar_modes::print_integrators(rows, N);
-        bar_modes::write_integrators(run.file("integrators.csv"), rows);
+        pd::print_bar_integrators(rows, N);
+        pd::write_bar_integrators(run.file("integrators.csv"), rows);
         // At Verlet's step, Newmark's period error ~ (omega dt)^2/12 is negligible for mode 1: same f1 bound.
         run.regression_bound(std::abs(rows[1].f1_rel_error) <= 2.0 / N, "Newmark f1 within 2 dx/l of c/(4l) at Verlet's step (the Verlet bound)");
         run.summary({"f1_newmark_4dt_SA", (1 + rows[2].f1_rel_error) * bar.f1, bar.f1, std::abs(rows[2].f1_rel_error), "Hz"});

@@ -17,10 +17,11 @@
 // stress); equivalent strain eps_eq = sqrt(2/3 h':h'), h' = dev diag(ln lambda, ln mu_y, ln mu_z).
 // Run: large_stretch_3d [--model all|pmb|lps|pals|correspondence|correspondence-svk] [--n 4]
 //      [--steps 50] [--strain 1] [--tol 1e-9] [--safety 1.2] [--quick] [--check] [--out DIR]
-// Load stepping and gauge measurement: large_stretch_steps.hpp.
+// Load stepping: problems/common/stepped_bar_stretch.hpp; measurement: problems/common/measure/bar_stretch.hpp.
 // Writes: curves.csv (one row per model and step), summary.csv, params.csv.
-#include "problems/common/grips.hpp"
 #include "problems/common/bar_options.hpp"
+#include "problems/common/grips.hpp"
+#include "problems/common/stepped_bar_stretch.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/models/correspondence.hpp"
@@ -31,17 +32,12 @@
 #include "pd/models/surface_correction.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
 
-#include "large_stretch_steps.hpp"
-
 #include <cmath>
 #include <cstdio>
 #include <map>
 
-using large_stretch::Bar;
-using large_stretch::Loading;
-using large_stretch::Point;
-using large_stretch::Run;
-using large_stretch::stretch;
+using Point = pd::StretchPoint;
+using Run = pd::StretchCurve;
 using pd::ref::UniaxialLaw;
 
 static int run_case(int argc, char** argv)
@@ -74,22 +70,24 @@ static int run_case(int argc, char** argv)
     run.start();
 
     // 2. Discretisation: bar plus grips; gauge layers at 0.5 l2 -+ delta, the mid-length layers.
-    const Bar s = pd::gauged_bar(L, W, T, T / n, m * T / n, grip * m * T / n);
+    const pd::GaugedBar s = pd::gauged_bar(L, W, T, T / n, m * T / n, grip * m * T / n);
     pd::Bonds bonds = pd::build_bonds(s.bar.body, s.delta);
     std::printf("\nnodes %zu, bonds %zu, dx %.3e m, delta %.3e m, gauge %.3e m\n", s.bar.body.size(), bonds.size(), s.dx, s.delta, s.gauge.dist);
 
-    // 3.-5. Models, load stepping by ADR (density: the model's reference-tangent bound).
+    // 3.-5. Per model: 3. the model; 4. the grips, left u_x = 0, right u_x = U, lateral components free;
+    // 5. U in equal steps, each solved by ADR (problems/common/stepped_bar_stretch.hpp) and measured.
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     std::vector<std::string> models{"pmb", "lps", "pals", "correspondence", "correspondence-svk"};
     if (which != "all") models = {which};
-    const Loading load{strain, steps, tol, max_iter, safety};
+    const pd::StretchLoading load{strain, steps, tol, max_iter, safety};
     auto none = [](const pd::Bonds&, const pd::Field<3>&) {};
     std::map<std::string, Run> runs;
     for (const std::string& name : models) {
         using Corr = pd::Correspondence<3>;
         const pd::Body<3>& body = s.bar.body;
         auto load_steps = [&](auto& model, UniaxialLaw law, auto commit) {  // density: the model's reference-tangent bound
-            return stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit, run.checkpoints());
+            return pd::stretch_bar_in_steps(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, nu, law, mat, commit,
+                                            run.checkpoints());
         };
         Run r;
         if (name == "pmb") {  // nu = 1/4, energy surface correction (classical W_inf), as bar_stiffness_3d
@@ -97,8 +95,8 @@ static int run_case(int argc, char** argv)
             pd::apply_surface_correction(model, body, bonds, pd::SurfaceCorrectionMethod::energy,
                                          {.reference = pd::SurfaceCorrectionOptions::Reference::classical, .kappa = mat.K});
             const pd::Elastic pmb_mat = pd::Elastic::from_E_nu(3 * mat.K * 0.5, 0.25);  // E = 1.5 K
-            r = stretch(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, 0.25, UniaxialLaw::pmb_continuum, pmb_mat, none,
-                        run.checkpoints());
+            r = pd::stretch_bar_in_steps(model, pd::stiffness_bound(model, bonds, body.x), s, bonds, load, 0.25, UniaxialLaw::pmb_continuum,
+                                         pmb_mat, none, run.checkpoints());
         } else if (name == "lps") {
             pd::LPS model({.material = mat, .dim = 3}, bonds);
             r = load_steps(model, UniaxialLaw::lps_continuum, none);

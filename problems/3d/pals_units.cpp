@@ -19,7 +19,7 @@
 // dependence; its stability, spread and E_mean/E_qs are then measured, not asserted (no exit 3).
 // Run: pals_units_3d [--units all|si|mmgs|cgs] [--model all|pmb|lps|lps-scf|pals|correspondence] [--pals-base unit]
 //      [--grid standard|table | --sf 0.5,0.1 --dx 1e-3,1.5e-3] [--quick] [--check] [--out DIR]
-// Scene, measurement and runs in one unit system: pals_units_runs.hpp.
+// Bar, explicit run and ADR reference in one unit system: problems/common/tension_bar_modulus.hpp.
 // Writes: runs.csv (one row per units, model, dx, SF), summary.csv, params.csv.
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
@@ -31,8 +31,7 @@
 #include "pd/models/pmb.hpp"
 #include "pd/models/registry.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
-
-#include "pals_units_runs.hpp"
+#include "problems/common/tension_bar_modulus.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -42,9 +41,9 @@
 
 namespace {
 
-using pals_units::Outcome;
-using pals_units::Scene;
-using pals_units::Units;
+using Outcome = pd::RampModulus;
+using Scene = pd::TensionBar;
+using Units = pd::UnitSystem;
 
 // Builds model `name` on scene s (models/registry.hpp) and calls fn(model, ADR row-sum bound, PMB
 // micromodulus c for dt_crit); PALS and correspondence take the micromodulus bound.
@@ -116,8 +115,8 @@ static int run_case(int argc, char** argv)
     std::vector<Units> systems{{"si", 1, 1, 1}, {"mmgs", 1e-3, 1e-3, 1}, {"cgs", 1e-2, 1e-3, 1}};
     if (units != "all") std::erase_if(systems, [&](const Units& u) { return u.name != units; });
 
-    // 2.-5. Per (dx, SF): the lattice in every unit system; per model the quasi-static E (ADR in
-    // the first unit system, once per dx) and one explicit run per unit system.
+    // 2.-5. Per (dx, SF) and model (problems/common/tension_bar_modulus.hpp): the quasi-static E_qs,
+    // then per unit system one explicit run, its E in GPa beside the SI run's.
     pd::io::CsvWriter csv(run.file("runs.csv"), {"units", "model", "dx_m", "delta_m", "sf", "sf_actual", "nodes", "bonds", "dt_s",
                                              "dt_crit_s", "steps", "stable", "unstable_step", "unstable_node", "E_end_GPa", "E_mean_GPa",
                                              "E_mean_axis_GPa", "E_qs_GPa", "E_end_rel_dev_vs_si", "E_mean_rel_dev_vs_si", "E_mean_vs_qs", "wall_s"});
@@ -132,22 +131,25 @@ static int run_case(int argc, char** argv)
     std::printf("\n%-5s %-15s %5s %5s %5s %7s %7s %9s %9s %9s %9s %9s %9s %6s\n", "units", "model", "dx_mm", "sf", "nodes", "bonds", "steps",
                 "E_end", "E_mean", "E_axis", "E_qs_GPa", "dev_vs_si", "mean/qs-1", "wall_s");
     for (const Entry& c : cases) {
+        // 2. Discretisation: the gripped bar and its families in every unit system.
         std::vector<Scene> scenes;
-        for (const Units& u : systems) scenes.push_back(pals_units::make_scene(u, L, W, T, strain, c.dx, m, t_ramp, rho));
+        for (const Units& u : systems) scenes.push_back(pd::tension_bar_in_units(u, L, W, T, strain, c.dx, m, t_ramp, rho));
         std::stringstream names(c.models);
         for (std::string name; names >> name;) {
             const std::string key = name + "@" + std::to_string(c.dx);
+            // 3. Model (with_model); 4. the reference E_qs by ADR, in the first unit system, once per dx.
             if (!E_qs.count(key))
                 with_model(name, scenes[0], pd::Elastic::from_E_nu(E / systems[0].stress(), nu), C_hg, base, [&](auto& model, const auto& bound, double) {
-                    E_qs[key] = pals_units::quasi_static(scenes[0], model, bound, nu) * systems[0].stress() * 1e-9;
+                    E_qs[key] = pd::quasi_static_modulus(scenes[0], model, bound, nu) * systems[0].stress() * 1e-9;
                 });
             double E_si_end = NAN, E_si_mean = NAN;
             for (std::size_t k = 0; k < systems.size(); ++k) {
                 const Units& u = systems[k];
                 Scene& s = scenes[k];
+                // 5. Clamped grips, the right one pulled by the ramp; velocity Verlet; E over the last quarter.
                 Outcome o;
                 with_model(name, s, pd::Elastic::from_E_nu(E / u.stress(), nu), C_hg, base,
-                           [&](auto& model, const auto&, double c_pmb) { o = pals_units::run_explicit(s, model, c.sf, c_pmb); });
+                           [&](auto& model, const auto&, double c_pmb) { o = pd::pull_by_ramp(s, model, c.sf, c_pmb); });
                 const double to_GPa = u.stress() * 1e-9, E_end = o.E_end * to_GPa, E_mean = o.E_mean * to_GPa;
                 if (u.name == "si") { E_si_end = E_end; E_si_mean = E_mean; }
                 const double dev_end = E_end / E_si_end - 1, dev_mean = E_mean / E_si_mean - 1, vs_qs = E_mean / E_qs[key] - 1;

@@ -10,7 +10,10 @@
 // internal force density [N/m^3], so -f V is the force the grip holds the node with).
 // Lateral stretch of a section: the least-squares slope of the deformed against the reference
 // coordinate, mu_d = cov(x_d, x_d + u_d) / var(x_d).
-// Node sets come in node order and every sum runs in that order (results reproducible bit for bit).
+// Axis variant (the source's "two points near the section centre", sec. 4.7): eps_axis from the mean
+// u_x of the gauge layers' nodes within dx of the axis (y, z) = (W/2, T/2) in y and z.
+// Node sets come in node order and every sum runs in that order (results reproducible bit for bit),
+// but for AxisGauge's sections, which sum their axis nodes last.
 #pragma once
 
 #include "pd/core/field.hpp"
@@ -89,6 +92,35 @@ inline double mean_axial_displacement(const Field<3>& u, const NodeSet& set)
     double m = 0;
     for (int i : set) m += u.c[0][i];
     return m / set.size();
+}
+
+// The gauge layers of s split at the axis (header): sec_a, sec_b every node of the layer, the axis
+// nodes moved to the end (the summation order pals_units_3d has always used: runs.csv depends on it
+// in the last bits); axis_a, axis_b only the axis nodes.
+struct AxisGauge {
+    NodeSet sec_a, sec_b, axis_a, axis_b;
+};
+inline AxisGauge axis_gauge(const GaugedBar& s)
+{
+    AxisGauge g;
+    auto axis = [&](int i) { return near_bar_axis(s.bar.body, i, s.W, s.T, s.dx); };
+    for (int i : s.gauge.sec_a) (axis(i) ? g.axis_a : g.sec_a).push_back(i);
+    for (int i : s.gauge.sec_b) (axis(i) ? g.axis_b : g.sec_b).push_back(i);
+    g.sec_a.insert(g.sec_a.end(), g.axis_a.begin(), g.axis_a.end());
+    g.sec_b.insert(g.sec_b.end(), g.axis_b.begin(), g.axis_b.end());
+    return g;
+}
+
+// sigma and eps of (4.37) under the displacement u with internal force density f: eps from the
+// section means, eps_axis from the axis nodes (units of the bar's lengths and of f).
+struct GaugeSample {
+    double sigma, eps, eps_axis;  // [Pa], [-], [-]
+};
+inline GaugeSample sample_gauge(const Field<3>& f, const Field<3>& u, const GaugedBar& s, const AxisGauge& g)
+{
+    auto mean = [&](const NodeSet& set) { return mean_axial_displacement(u, set); };
+    const double dist = s.gauge.dist;
+    return {grip_stress(f, s), (mean(g.sec_b) - mean(g.sec_a)) / dist, (mean(g.axis_b) - mean(g.axis_a)) / dist};
 }
 
 // Least-squares slope of the deformed coordinate x_d + u_d against x_d over `set` (lateral stretch).
