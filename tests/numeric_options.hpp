@@ -129,7 +129,8 @@ inline void find_lists(std::vector<Program>& ps, const std::filesystem::path& di
 {
     std::vector<std::pair<Program*, Option>> candidates;
     for (auto& p : ps)
-        for (const auto& t : p.text_options) candidates.emplace_back(&p, Option{Option::list, t});
+        for (const auto& t : p.text_options)
+            if (t != "params-only") candidates.emplace_back(&p, Option{Option::list, t});  // a file it would write, not a list
     for (int round = 0; round < 2 && !candidates.empty(); ++round) {
         std::vector<Proc> probes(candidates.size());
         for (std::size_t k = 0; k < probes.size(); ++k)

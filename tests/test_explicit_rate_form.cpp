@@ -92,7 +92,7 @@ TEST(ExplicitRateForm, FlanaganTaylorUniaxialStrainFollowsTheLogStrain)
 
 // 90 degrees about z in 100 steps: sigma = 0 to round-off at every node (the Peridigm pairing of
 // v_{n+1/2} with y_{n+1} gives 2.8e-2 K here, correspondence.hpp), F = R. Bound 1e-12 K, as
-// tests/test_correspondence.cpp and test_load_step.cpp (measured 4e-16 K); F to 1e-12 (V12).
+// tests/test_correspondence_flanagan_taylor.cpp and test_load_step.cpp (measured 4e-16 K); F to 1e-12 (V12).
 TEST(ExplicitRateForm, FlanaganTaylorRigidRotationGivesZeroStress)
 {
     const Body<3> body = block();

@@ -34,7 +34,7 @@ M3 rot_z(double th) { return Eigen::AngleAxisd(th, Eigen::Vector3d::UnitZ()).toR
 // 90 degrees about z in N = 50 load steps; in each step the "solver" first evaluates two wrong
 // trial configurations (stretched 10 %, and half-way), then the target, then commits. The step
 // from F0 = Q0 U to F1 = Q1 U has L dt = 2 (dQ - I)(dQ + I)^-1 (Cayley, exactly skew): d = 0, so
-// without pre-stress sigma = 0 to round-off (1e-12 K, as tests/test_correspondence.cpp). With a
+// without pre-stress sigma = 0 to round-off (1e-12 K, as tests/test_correspondence_flanagan_taylor.cpp). With a
 // pre-stress (uniaxial strain 1e-3 committed in one step first), sigma_hat is unchanged and sigma
 // = R sigma_hat R^T with R advanced by the Cayley angle 2 tan(dth/2) per step instead of dth:
 // over-rotation N dth^3/12 = 1.29e-4 rad, so sigma_xy is off by 1.29e-4 (sigma0_xx - sigma0_yy) =

@@ -112,9 +112,9 @@ private:
     bool bonded(std::size_t i, int j) const
     {
         if (!bonds_) return false;
-        for (std::int64_t k = bonds_->begin(i); k < bonds_->end(i); ++k)
-            if (bonds_->partner[k] == j) return !bonds_->has_damage() || bonds_->intact[k];
-        return false;
+        const auto first = bonds_->partner.begin() + bonds_->begin(i), last = bonds_->partner.begin() + bonds_->end(i);
+        const auto it = std::lower_bound(first, last, j);  // families are sorted by partner (core/bonds.hpp)
+        return it != last && *it == j && (!bonds_->has_damage() || bonds_->intact[it - bonds_->partner.begin()]);
     }
 
     bool needs_rebuild(const Field<D>& y) const

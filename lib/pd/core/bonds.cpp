@@ -88,14 +88,13 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
     // 3. Reverse-bond index: families are sorted by partner, so j->i is found by binary search.
     b.reverse.resize(b.size());
     for (std::size_t i = 0; i < n; ++i)
-        for (std::int64_t k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-            const int j = b.partner[k];
+        for_family(b, i, [&](std::int64_t k, int j) {
             auto first = b.partner.begin() + b.offset[j], last = b.partner.begin() + b.offset[j + 1];
             auto it = std::lower_bound(first, last, static_cast<int>(i));
             if (it == last || *it != static_cast<int>(i))
                 throw std::logic_error("bond family is not symmetric (keep filter must be symmetric)");
             b.reverse[k] = it - b.partner.begin();
-        }
+        });
     return b;
 }
 

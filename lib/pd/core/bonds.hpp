@@ -29,7 +29,7 @@ struct Bonds {
     double delta = 0;                 // horizon [m]
     Influence influence{};            // omega(|xi|) the families were built with (`omega` holds its values)
     std::vector<std::int64_t> offset;  // family of i is [offset[i], offset[i+1])
-    std::vector<int> partner;         // j of bond k
+    std::vector<int> partner;         // j of bond k, ascending within a family
     std::vector<double> length;       // reference length |xi| [m]
     std::vector<double> omega;        // influence omega(|xi|) [-]
     std::vector<double> volume;       // beta V_j, partner volume seen from i [m^3]

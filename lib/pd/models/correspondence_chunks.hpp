@@ -53,8 +53,7 @@ ChunkTemplates chunk_templates(const TranslatedRuns& runs, const Bonds& b, const
     ChunkTemplates t;
     t.begin.push_back(0);
     for (int first : runs.run_first) {
-        for (std::int64_t k = b.begin(first); k < b.end(first); ++k) {
-            const int j = b.partner[k];
+        for_family(b, static_cast<std::size_t>(first), [&](std::int64_t k, int j) {
             TemplateBond tb{};
             for (int c = 0; c < D; ++c) {
                 tb.xi[c] = x.c[c][j] - x.c[c][first];
@@ -63,7 +62,7 @@ ChunkTemplates chunk_templates(const TranslatedRuns& runs, const Bonds& b, const
             tb.hg = hg.empty() ? 0.0 : hg[k];
             tb.offset = j - first;
             t.bond.push_back(tb);
-        }
+        });
         t.begin.push_back(static_cast<std::int64_t>(t.bond.size()));
     }
     return t;

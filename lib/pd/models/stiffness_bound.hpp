@@ -46,11 +46,11 @@ Field<D> stiffness_bound_springs(const Bonds& b, const Field<D>& x, const std::v
 {
     Field<D> G(b.nodes());
     for (std::size_t i = 0; i < b.nodes(); ++i)
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            const Vec<D> n = detail::bond_direction(x, i, b.partner[k], b.length[k]);
+        for_family(b, i, [&](std::int64_t k, int j) {
+            const Vec<D> n = detail::bond_direction(x, i, j, b.length[k]);
             const double w = 2 * spring[k] * detail::norm1(n);
             for (int d = 0; d < D; ++d) G.c[d][i] += w * std::abs(n[d]);
-        }
+        });
     return G;
 }
 
@@ -84,15 +84,13 @@ Field<D> stiffness_bound(const LPS& model, const Bonds& b, const Field<D>& x)
     for (std::size_t i = 0; i < nn; ++i) {
         beta[i] = model.p_coef[i] - model.alpha[i] / model.dim;
         double s = 0;
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k)
-            s += model.wV[k] * b.length[k] * 2 * detail::norm1(detail::bond_direction(x, i, b.partner[k], b.length[k]));
+        for_family(b, i, [&](std::int64_t k, int j) { s += model.wV[k] * b.length[k] * 2 * detail::norm1(detail::bond_direction(x, i, j, b.length[k])); });
         T[i] = model.m[i] > 0 ? model.dim * s / model.m[i] : 0.0;
     }
     Field<D> G(nn);
     for (std::size_t i = 0; i < nn; ++i) {
         Vec<D> first{};  // sum_k wV_k L_k n_k: zero for a symmetric (interior) family
-        for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
-            const int j = b.partner[k];
+        for_family(b, i, [&](std::int64_t k, int j) {
             const double L = b.length[k];
             const Vec<D> n = detail::bond_direction(x, i, j, L);
             const double pair = model.wV[k] * (model.alpha[i] + model.alpha[j]) * 2 * detail::norm1(n);
@@ -100,7 +98,7 @@ Field<D> stiffness_bound(const LPS& model, const Bonds& b, const Field<D>& x)
                 G.c[d][i] += (pair + model.wV[k] * L * std::abs(beta[j]) * T[j]) * std::abs(n[d]);
                 first[d] += model.wV[k] * L * n[d];
             }
-        }
+        });
         for (int d = 0; d < D; ++d) G.c[d][i] += std::abs(beta[i]) * std::abs(first[d]) * T[i];
     }
     return G;
