@@ -8,6 +8,8 @@
 // law: the thermal strain; flanagan-taylor: its increment in each update) take the strain
 // alpha (T - T_ref) of the run's temperatures (pd/models/thermal_expansion.hpp, correspondence.hpp), and
 // so does the critical stretch of --s0; and PALS (per node, pals.hpp): every model of pd_run.
+// --thermal-strain: a bond's free strain from its owner node (default, the source's rule) or the mean of
+// its two ends (bond-mean: LPS, LPS+SCF, PALS; PMB takes the mean either way; correspondence refuses it).
 // Integrators: explicit Euler, implicit Euler, CVODE BDF (one output per thermal step).
 // dt_thermal default = 0.5 x the Gershgorin thermal critical step (spec/000b eq. 3.20).
 // Clock: --dt-thermal, or --nsync-mk N: one thermal step of N mechanical steps (spec/000a 3.3.4).
@@ -51,6 +53,7 @@ struct HeatOptions {
     const double& hourglass;
     const std::string& correction;
     const double &alpha, &T_ref;
+    const std::string& thermal_strain;
     const int& nsync_mk;
     const double& source;
 };
@@ -68,6 +71,8 @@ inline HeatOptions add_heat_options(pd::io::Options& opt, double automatic)
             opt.add_string("thermal-correction", "none", "Agwai thermal correction factor", {"none", "per-node", "pair-mean"}),
             opt.add("alpha", 0.0, "linear thermal expansion coefficient (with --heat and mechanics)", "1/K"),
             opt.add("T-ref", automatic, "stress-free temperature of --alpha (required with it)", "K"),
+            opt.add_string("thermal-strain", "owner", "a bond's free thermal strain: its owner node's, or the mean of its ends",
+                           {"owner", "bond-mean"}),
             opt.add_int("nsync-mk", 0, "mechanical steps per thermal step, N_sync(MK) (instead of --dt-thermal; with mechanics)"),
             opt.add("heat-source", 0.0, "uniform volumetric heat source on the free points (with --heat)", "W/m^3")};
 }
@@ -78,7 +83,7 @@ void check_heat_options(const pd::io::Options& opt, const HeatOptions& h, bool m
 {
     const bool on = h.heat != "none";
     for (const char* name : {"k", "cv", "T0", "dt-thermal", "thermal-steps", "thermal-integrator", "heat-hourglass",
-                             "thermal-correction", "alpha", "T-ref", "nsync-mk", "heat-source"})
+                             "thermal-correction", "alpha", "T-ref", "thermal-strain", "nsync-mk", "heat-source"})
         if (opt.given(name) && !on) fail(std::string("option --") + name + " needs --heat agwai|correspondence");
     if (!on) return;
     for (const char* name : {"k", "cv"})
@@ -95,7 +100,8 @@ void check_heat_options(const pd::io::Options& opt, const HeatOptions& h, bool m
     }
     if (!std::isfinite(h.source)) fail("option --heat-source must be finite");
     if (h.source != 0 && h.integrator == "cvode") fail("option --heat-source is written for --thermal-integrator explicit|implicit");
-    if (opt.given("T-ref") && !opt.given("alpha")) fail("option --T-ref needs --alpha");
+    for (const char* name : {"T-ref", "thermal-strain"})
+        if (opt.given(name) && !opt.given("alpha")) fail(std::string("option --") + name + " needs --alpha");
     if (!opt.given("alpha")) return;
     if (!mechanics) fail("option --alpha needs the mechanics (not --mechanics off)");
     if (!opt.given("T-ref")) fail("option --T-ref is required with --alpha (the stress-free temperature)");
@@ -109,6 +115,7 @@ struct HeatSettings {
     long every = 1;  // heat.csv row every k thermal steps
     bool resumed = false;  // restarted from a checkpoint: heat.csv is written by state(), not by init
     double alpha = 0, T_ref = 0;  // thermal expansion [1/K] and its stress-free temperature [K]; alpha 0: none
+    bool bond_mean = false;       // --thermal-strain bond-mean (pd::ThermalExpansion::bond_mean)
     long nsync_mk = 0;            // mechanical steps per thermal step (0: dt above)
     double source = 0;            // uniform volumetric source on the free points [W/m^3]
 };
@@ -118,7 +125,7 @@ inline HeatSettings heat_settings(const HeatOptions& h, double rho, double measu
 {
     return {.model = h.heat, .integrator = h.integrator, .k = h.k, .rho_cv = rho * h.cv, .T0 = h.T0, .dt = h.dt, .hourglass = h.hourglass,
             .measure = measure, .correction = pd::parse_thermal_correction(h.correction), .every = every, .alpha = h.alpha, .T_ref = h.T_ref,
-            .nsync_mk = h.nsync_mk, .source = h.source};
+            .bond_mean = h.thermal_strain == "bond-mean", .nsync_mk = h.nsync_mk, .source = h.source};
 }
 
 // The run's temperature field (pd/heat/temperature_field.hpp: the model and integrator of the settings)
@@ -245,9 +252,11 @@ template <class Model>
 void attach_thermal_expansion(Model& model, const HeatSettings& s, HeatRun* heat, const std::string& name, void (*fail)(const std::string&))
 {
     if (!heat || s.alpha == 0) return;
-    if constexpr (requires { model.set_thermal_expansion(pd::ThermalExpansion{}); })
-        model.set_thermal_expansion({s.alpha, s.T_ref, &heat->T()});
-    else
+    if constexpr (requires { model.set_thermal_expansion(pd::ThermalExpansion{}); }) {
+        pd::ThermalExpansion t{s.alpha, s.T_ref, &heat->T()};
+        t.bond_mean = s.bond_mean;
+        model.set_thermal_expansion(t);  // a refusal (std::invalid_argument) names the model: exit status 2
+    } else
         fail(std::string("option --alpha: thermal expansion of ").append(name).append(" is not written"));
 }
 

@@ -2,7 +2,8 @@
 // PMB, LPS and correspondence from the run's temperatures). References: a free cube held at y = x with the uniform
 // temperature T_ref + dT starts with the strain energy of a fully constrained body, 9/2 K (alpha dT)^2
 // per unit volume at every point (closed form; spec/000a V7), keeps its total energy and expands;
-// T = T_ref gives the files of a run without --alpha byte for byte; the input contracts.
+// T = T_ref gives the files of a run without --alpha byte for byte; --thermal-strain bond-mean leaves a
+// free cube under a linear temperature field force-free; the input contracts.
 #include "pd/io/csv.hpp"
 
 #include <gtest/gtest.h>
@@ -82,6 +83,33 @@ TEST(PdRunThermalExpansion, ReferenceTemperatureChangesNothing)
     }
 }
 
+// A linear temperature field T = T_ref + (eps0 + a X) / alpha with the compatible displacement of that
+// free thermal strain (tests/test_thermal_bond_mean.cpp, linear_temperature_field) as the cloud's initial
+// ux, uy, uz: classical thermoelasticity has no stress, and with the bond mean each bond's mechanical
+// extension is of second order in a X (|W|^2 / 2 <= 3e-9 of its length here, |W| <= a |X| = 7e-5),
+// against the owner rule's surface strains of order a delta / 2 = 3e-5: an energy ratio ~1e-8, below
+// the bound 1e-6. The owner rule's surface nodes see their own temperature only.
+TEST(PdRunThermalExpansion, BondMeanLeavesALinearTemperatureFieldForceFree)
+{
+    const double eps0 = alpha * dT, a = alpha * 10 / (6 * dx), c = 3 * dx;  // [-], [1/m]: 10 K across the cube, [m]
+    const std::string cloud = write_file("cube_linear.csv", lattice_csv(6, dx, ",ux,uy,uz,T0", [&](int i, int j, int k) {
+        const double X = (i + 0.5) * dx - c, Y = (j + 0.5) * dx - c, Z = (k + 0.5) * dx - c, eps = eps0 + a * X;
+        return "," + num(eps0 * X + 0.5 * a * (X * X - Y * Y - Z * Z)) + "," + num(eps * Y) + "," + num(eps * Z) + "," + num(T_ref + eps / alpha);
+    })).string();
+    for (const char* model : {"lps", "lps-scf", "pals"}) {
+        double W0[2];
+        for (int mean = 0; mean < 2; ++mean) {
+            const Result r = pd_run(std::string("te_lin_") + model + std::to_string(mean),
+                                    "--input " + cloud + heat + " --model " + model + " --alpha " + num(alpha) + " --T-ref " + num(T_ref) +
+                                        " --steps 1 --output-steps none" + (mean ? " --thermal-strain bond-mean" : ""));
+            ASSERT_EQ(r.status, 0) << r.err;
+            W0[mean] = read_csv(r.dir / "energy.csv").number(0, 3);  // strain_J at step 0
+        }
+        EXPECT_GT(W0[0], 0) << model;
+        EXPECT_LT(W0[1], 1e-6 * W0[0]) << model << ": bond mean " << W0[1] << " J, owner " << W0[0] << " J";
+    }
+}
+
 TEST(PdRunThermalExpansion, BadInputsExitTwoWithOneLine)
 {
     const std::string in = "--input " + cube(T_ref + dT) + " --steps 5";
@@ -95,6 +123,8 @@ TEST(PdRunThermalExpansion, BadInputsExitTwoWithOneLine)
         {in + steel + " --alpha 1e-5 --T-ref 20", "--alpha needs --heat"},
         {in + heat + " --alpha 1e-5", "--T-ref is required with --alpha"},
         {in + heat + " --T-ref 20", "--T-ref needs --alpha"},
+        {in + heat + " --thermal-strain bond-mean", "--thermal-strain needs --alpha"},
+        {in + heat + " --model correspondence --alpha 1e-5 --T-ref 20 --thermal-strain bond-mean", "bond_mean is for the ordinary models"},
         {"--input " + cube(T_ref) + " --heat agwai --k 50 --cv 500 --rho 7800 --delta 3e-3 --mechanics off --alpha 1e-5 --T-ref 20",
          "--alpha needs the mechanics"},
         {"--input " + plate.string() + " --steps 5" + heat + " --dim 2 --plane strain --model correspondence --alpha 1e-5 --T-ref 20",

@@ -8,8 +8,11 @@
 #include "pd/models/pals.hpp"
 #include "pd/models/pmb.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace pd_test::thermal_expansion_fixtures {
@@ -32,6 +35,12 @@ inline double max_norm(const Field<3>& f)
     double m = 0;
     for (std::size_t i = 0; i < f.size(); ++i) m = std::max(m, norm(f[i]));
     return m;
+}
+// |f_i - ref_i| <= rel max_i |ref_i| at every node (label names the model).
+inline void expect_forces_near(const Field<3>& f, const Field<3>& ref, double rel, const std::string& label)
+{
+    const double scale = max_norm(ref);
+    for (std::size_t i = 0; i < f.size(); ++i) EXPECT_LE(norm(f[i] - ref[i]), rel * scale) << label << " node " << i;
 }
 // The models on b, each with thermal expansion from theta (null: none): PMB, LPS (intact and
 // reference weighted volume), LPS+SCF and PALS.

@@ -147,8 +147,8 @@ inline double bond_work(const BondWork& o, std::size_t i, std::int64_t k, int j,
 
 #ifdef PD_CHUNK_WIDTH
 // f of the W nodes i0 + l of a chunk for an ordinary model: sum over node i0's bonds k (partners
-// j + l) of t Y, with Y = y_(j + l) - y_(i0 + l) and t = model.chunk_scalar(i0, k, j, |Y|), the
-// bond_scalar of the W lanes.
+// j + l) of t Y, with Y = y_(j + l) - y_(i0 + l) and t = model.bond_scalar(i0, k, j, |Y|) taken in
+// vchunk: the W lanes at once.
 // Calls bond(k, j, Y, |Y|) for the bonds k of node i0 (partners j), Y and |Y| of the W lanes of the
 // chunk (lane l: node i0 + l, partner j + l) as vectors: the one chunk traversal.
 template <int D, class Bond>
@@ -172,7 +172,7 @@ void ordinary_chunk(const Model& model, const Bonds& b, int i0, const Field<D>& 
 {
     vchunk acc[D] = {};
     for_chunk_bonds(b, y, i0, [&](std::int64_t k, int j, const vchunk* Y, const vchunk& ylen) {
-        const vchunk t = model.chunk_scalar(i0, k, j, ylen);
+        const vchunk t = model.bond_scalar(static_cast<std::size_t>(i0), k, j, ylen);
         for (int d = 0; d < D; ++d) acc[d] += t * Y[d];
     });
     for (int d = 0; d < D; ++d) store_chunk(f.c[d].data() + i0, acc[d]);

@@ -61,12 +61,13 @@ concept ChunkRunKernel = requires(const K& k, const Bonds& b, const Field<D>& y,
 };
 
 #ifdef PD_CHUNK_WIDTH
-// An ordinary kernel's bond_scalar for the W lanes of a chunk: chunk_scalar(i0, k, j, |Y|) for
-// bond k of node i0 (partner j) and the lanes i0 + l (partners j + l).
+// An ordinary kernel whose bond_scalar is written once for both paths (node_value, simd/chunk_vector.hpp):
+// taken in detail::vchunk, bond_scalar(i0, k, j, |Y|) is that of bond k of node i0 (partner j) for the
+// W lanes i0 + l (partners j + l) of a chunk; chunks(b) names the runs.
 template <class K>
 concept OrdinaryChunkKernel = requires(const K& k, const Bonds& b, const detail::vchunk& v) {
     k.chunks(b);
-    k.chunk_scalar(0, std::int64_t{}, 0, v);
+    { k.bond_scalar(std::size_t{}, std::int64_t{}, 0, v) } -> std::same_as<detail::vchunk>;
 };
 #endif
 

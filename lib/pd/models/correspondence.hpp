@@ -200,6 +200,8 @@ struct Correspondence {
     void set_thermal_expansion(const ThermalExpansion& t)
     {
         t.validate(F.size(), D == 2 && par.plane == Plane::strain);
+        if (t.active() && t.bond_mean)
+            throw std::invalid_argument("Correspondence: its thermal strain is a node's (bond_mean is for the ordinary models)");
         if (t.active() && par.law == Law::saint_venant_kirchhoff)
             throw std::invalid_argument("Correspondence: thermal expansion is not written for Law::saint_venant_kirchhoff");
         thermal = t;

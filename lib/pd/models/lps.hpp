@@ -36,12 +36,16 @@
 //   rule or scale_bonds changed the weights);
 //   t_i = omega (|xi| (p_i theta_i - alpha_i theta_i / D - alpha_i eps_i) + alpha_i e),
 // so the kernel and the chunks serve it unchanged (a_coef_i takes - alpha_i eps_i).
+// With ThermalExpansion::bond_mean the bond's free strain is eps_ij = (eps_i + eps_j)/2 instead:
+//   theta_i = (D/m_i) (sum_j omega |xi| e V_j - C_i),  C_i = sum_j omega |xi|^2 eps_ij V_j (intact bonds),
+//   t_i + t_j = |xi| (a_i + a_j) + (alpha_i + alpha_j) (e - eps_ij |xi|),  a_i = (p_i - alpha_i / D) theta_i,
+// C_i summed in each point pass and eps_ij gathered per bond by MeanThermalKernel (per node and chunks).
 // Cost (reports/3d/model_cost.md): internal_force uses Kernel (with_kernel), which reads
 // a_j = (p_j - alpha_j / D) theta_j and alpha_j precombined by point_pass instead of p_j, theta_j,
 // alpha_j, with no division by D per bond; bond_scalar still
 // reads theta, p_coef and alpha, for callers that edit them between the passes. Nodes with
 // translated families (translated_families.hpp: same |xi| and omega V_j bond by bond) take both passes
-// W nodes at a time in undamaged scenes (dilatation_chunk, Kernel::chunk_scalar): about 1.5x PMB.
+// W nodes at a time in undamaged scenes (stretch_sums, Kernel::bond_scalar in detail::vchunk): about 1.5x PMB.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/core/bonds.hpp"
@@ -165,7 +169,7 @@ struct LPS {
         const double* len = b.length.data();
         const double* wv = wV.data();
         stretch_sums<1>(b, y, runs, [&](std::int64_t k, const auto& ylen) { return wv[k] * len[k] * (ylen - len[k]); }, Unweighted{},
-                        [&](std::size_t i, const std::array<double, 1>& S) { set_dilatation(i, D * S[0]); });
+                        [&](std::size_t i, const std::array<double, 1>& S) { set_dilatation(b, i, D * S[0]); });
     }
 
     // (t_i + t_j) V_j / |Y|: force on i is this times Y, with t = omega (D kappa theta |xi| / m
@@ -177,7 +181,9 @@ struct LPS {
         const double L = bonds->length[k];
         const double e = ylen - L;
         const double dev = (alpha[i] * theta[i] + alpha[j] * theta[j]) / dim;
-        const double th = thermal.active() ? alpha[i] * thermal.strain(i) + alpha[j] * thermal.strain(j) : 0.0;
+        const double th = !thermal.active() ? 0.0
+                          : thermal.bond_mean ? (alpha[i] + alpha[j]) * thermal.pair_strain(i, static_cast<std::size_t>(j))
+                                              : alpha[i] * thermal.strain(i) + alpha[j] * thermal.strain(j);
         const double tij = L * (p_coef[i] * theta[i] + p_coef[j] * theta[j] - dev - th) + (alpha[i] + alpha[j]) * e;
         return tij * wV[k] / ylen;
     }
@@ -192,27 +198,38 @@ struct LPS {
         const double* a;       // a_coef per node [Pa/m^5]
         const double* alpha;   // alpha per node [Pa/m^5]
         const TranslatedRuns* runs;
-        double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
+        // T = double, or the lanes of a chunk (detail::vchunk; bond_loop.hpp).
+        template <class T>
+        T bond_scalar(std::size_t i, std::int64_t k, int j, const T& ylen) const
         {
             const double L = length[k];
-            const double tij = L * (a[i] + a[j]) + (alpha[i] + alpha[j]) * (ylen - L);
+            const T tij = L * (node_value<T>(a, i) + node_value<T>(a, j)) + (node_value<T>(alpha, i) + node_value<T>(alpha, j)) * (ylen - L);
             return tij * wV[k] / ylen;
         }
         const TranslatedRuns* chunks(const Bonds& b) const { return runs->fits(b) && !runs->chunk_start.empty() ? runs : nullptr; }
-#ifdef PD_CHUNK_WIDTH
-        detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
+    };
+    // Kernel with the bond-mean thermal strain (header): e less eps_ij |xi|, eps_ij = h ((T_i - T_ref) + (T_j - T_ref)),
+    // h = alpha / 2 (ThermalExpansion::pair_strain's operations).
+    struct MeanThermalKernel : Kernel {
+        const double* T;         // node temperatures [K]
+        double h = 0, T_ref = 0;  // alpha / 2 [1/K], reference temperature [K]
+        template <class V>
+        V bond_scalar(std::size_t i, std::int64_t k, int j, const V& ylen) const
         {
-            using detail::load_chunk;
             const double L = length[k];
-            const detail::vchunk tij = L * (load_chunk(a + i0) + load_chunk(a + j)) + (load_chunk(alpha + i0) + load_chunk(alpha + j)) * (ylen - L);
+            const V eps = h * ((node_value<V>(T, i) - T_ref) + (node_value<V>(T, j) - T_ref));
+            const V tij = L * (node_value<V>(a, i) + node_value<V>(a, j)) + (node_value<V>(alpha, i) + node_value<V>(alpha, j)) * (ylen - L * (1 + eps));
             return tij * wV[k] / ylen;
         }
-#endif
     };
     // Valid after point_pass (a_coef of the current y, alpha of the current correction).
     Kernel kernel() const { return {bonds->length.data(), wV.data(), a_coef.data(), alpha.data(), &runs}; }
     template <class Pass>
-    void with_kernel(Pass&& pass) const { pass(kernel()); }
+    void with_kernel(Pass&& pass) const
+    {
+        if (thermal.active() && thermal.bond_mean) pass(MeanThermalKernel{kernel(), thermal.theta->data(), 0.5 * thermal.alpha, thermal.theta_ref});
+        else pass(kernel());
+    }
 
     // W_i (4.10) [J/m^3]; call after point_pass at the same y.
     template <int D>
@@ -220,7 +237,7 @@ struct LPS {
     {
         auto bond = [&](std::size_t i, std::int64_t k) {
             const double L = b.length[k];
-            const double ed = norm(y[b.partner[k]] - y[i]) - L * (1 + thermal.strain(i)) - theta[i] * L / dim;
+            const double ed = norm(y[b.partner[k]] - y[i]) - L * (1 + thermal.bond_strain(i, b.partner[k])) - theta[i] * L / dim;
             return wV[k] * ed * ed;
         };
         return node_sums(b, bond, [&](std::size_t i, double dev) { return 0.5 * kappa * theta[i] * theta[i] + 0.5 * alpha[i] * dev; });
@@ -257,18 +274,29 @@ private:
         }
     }
 
-    // theta_i = sum / m_i, sum = D sum_j omega |xi| e V_j less D eps_i M_i (thermal), and a_coef_i.
-    void set_dilatation(std::size_t i, double sum)
+    // theta_i = sum / m_i, sum = D sum_j omega |xi| e V_j less D eps_i M_i (thermal; bond mean: less D C_i,
+    // header), and a_coef_i.
+    void set_dilatation(const Bonds& b, std::size_t i, double sum)
     {
+        if (thermal.active() && thermal.bond_mean) {
+            double C = 0;  // C_i (header)
+            for_intact_bonds(b, i, [&](std::int64_t k, int j) {
+                C += wV[k] * b.length[k] * b.length[k] * thermal.pair_strain(i, static_cast<std::size_t>(j));
+            });
+            theta[i] = m[i] > 0 ? (sum - dim * C) / m[i] : 0.0;
+            a_coef[i] = (p_coef[i] - alpha[i] / dim) * theta[i];
+            return;
+        }
         const double eps = thermal.strain(i);
         const double th = m[i] > 0 ? (eps != 0 ? sum - dim * eps * thermal_moment[i] : sum) / m[i] : 0.0;
         theta[i] = th;
         a_coef[i] = (p_coef[i] - alpha[i] / dim) * th - (eps != 0 ? alpha[i] * eps : 0.0);
     }
-    // M_i (header) over the intact bonds with the current weights; none while thermal expansion is off.
+    // M_i (header) over the intact bonds with the current weights; none while thermal expansion is off
+    // or takes the bond mean.
     void thermal_moments(const Bonds& b)
     {
-        if (!thermal.active()) return thermal_moment.clear();
+        if (!thermal.active() || thermal.bond_mean) return thermal_moment.clear();
         thermal_moment = node_sums(b, [&](std::size_t, std::int64_t k) { return wV[k] * b.length[k] * b.length[k]; },
                                    [](std::size_t, double sum) { return sum; });
     }

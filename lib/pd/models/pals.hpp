@@ -33,6 +33,10 @@
 // extension e_mech - theta_mech |xi|/3 = e - theta_i |xi|/3 with theta_i the total dilatation (kept in
 // `theta`, which the bond kernel reads), since m_omega = 3 wherever the systems are regular; so p_i
 // alone carries it and the bond kernel and chunks are unchanged.
+// With ThermalExpansion::bond_mean (eps_ij = (eps_i + eps_j)/2 per bond) `theta` holds the mechanical
+// dilatation theta_i - C^w_i, p_i takes (sigma_i x)•e - C^s_i, C^w_i = sum_j w_ik |xi|^2 eps_ij and
+// C^s_i = sum_j s_ik |xi|^2 eps_ij over the intact bonds, and MeanThermalKernel uses e - eps_ij |xi| in
+// the bond force: e_d = e - eps_ij |xi| - theta_i |xi| / 3 from both ends.
 // Multipliers use the intact bonds; after damage call recompute(bonds) (a scene, scene.hpp, does it whenever
 // bonds break): the damaged body is then the body built without the broken bonds
 // (tests/test_damage_models.cpp). Before recompute the multipliers are those of the old families.
@@ -75,7 +79,7 @@ struct PALS {
     std::vector<Multipliers> tau;       // sigma multipliers per node, tau * delta^5 [-]
     std::vector<double> m_sigma;        // (sigma_i x)•x per node [-]
     std::vector<double> m_omega;        // (omega_i x)•x per node [-] (3 where the system is regular)
-    std::vector<double> theta;          // dilatation (thermal strain included, header), updated by point_pass [-]
+    std::vector<double> theta;          // dilatation (thermal strain included; bond_mean: mechanical, header), by point_pass [-]
     std::vector<double> p;              // PALS pressure p_i, updated by point_pass [Pa]
     std::vector<double> w_i, w_j;       // omega_i<xi> V_j and omega_j<xi> V_j per bond i->j [1/m^2]
     std::vector<double> s_i, s_j;       // 2G sigma_i<xi> V_j and 2G sigma_j<xi> V_j per bond [Pa/m^2]
@@ -116,32 +120,48 @@ struct PALS {
         const double* si = s_i.data();
         stretch_sums<2>(b, y, runs, [&](std::int64_t k, const auto& ylen) { return len[k] * (ylen - len[k]); },
                         [&](std::int64_t k) { return std::array<double, 2>{wi[k], si[k]}; },
-                        [&](std::size_t i, const std::array<double, 2>& S) { set_dilatation(i, S[0], S[1]); });
+                        [&](std::size_t i, const std::array<double, 2>& S) { set_dilatation(b, i, S[0], S[1]); });
     }
 
     // (t_i<xi> + t_j<-xi>) V_j / |Y|: force on i is this times Y, with
     // t_i + t_j = |xi| (p_i w_i + p_j w_j - (theta_i s_i + theta_j s_j)/3) + e (s_i + s_j).
-    double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
+    // Without the bond-mean thermal term (header), which MeanThermalKernel adds: the bond pass
+    // (with_kernel) is the caller that gets it right in both cases.
+    // T = double, or the lanes of a chunk (detail::vchunk; bond_loop.hpp).
+    template <class T>
+    T bond_scalar(std::size_t i, std::int64_t k, int j, const T& ylen) const
     {
         const double L = length[k];
-        const double e = ylen - L;
-        const double tij = L * (p[i] * w_i[k] + p[j] * w_j[k] - third * (theta[i] * s_i[k] + theta[j] * s_j[k]))
-                           + e * (s_i[k] + s_j[k]);
+        const T e = ylen - L;
+        const T tij = L * (node_value<T>(p.data(), i) * w_i[k] + node_value<T>(p.data(), j) * w_j[k]
+                           - third * (node_value<T>(theta.data(), i) * s_i[k] + node_value<T>(theta.data(), j) * s_j[k]))
+                      + e * (s_i[k] + s_j[k]);
         return tij / ylen;
     }
-    // Chunk hooks of the bond loop (bond_loop.hpp): bond_scalar for the W nodes of a chunk.
+    // Chunk hook of the bond loop (bond_loop.hpp): the runs whose W nodes take bond_scalar at once.
     const TranslatedRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
-#ifdef PD_CHUNK_WIDTH
-    detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
+    // Kernel with the bond-mean thermal strain (header): bond_scalar with e less eps_ij |xi|,
+    // eps_ij = h ((T_i - T_ref) + (T_j - T_ref)), h = alpha / 2 (ThermalExpansion::pair_strain's operations).
+    struct MeanThermalKernel {
+        const PALS* m;
+        const double* T;          // node temperatures [K]
+        double h = 0, T_ref = 0;  // alpha / 2 [1/K], reference temperature [K]
+        template <class V>
+        V bond_scalar(std::size_t i, std::int64_t k, int j, const V& ylen) const
+        {
+            const double L = m->length[k];
+            const V eps = h * ((node_value<V>(T, i) - T_ref) + (node_value<V>(T, j) - T_ref));
+            return m->bond_scalar(i, k, j, ylen) - eps * L * (m->s_i[k] + m->s_j[k]) / ylen;
+        }
+        const TranslatedRuns* chunks(const Bonds& b) const { return m->chunks(b); }
+    };
+    // The bond pass's kernel: this model, or MeanThermalKernel with a bond-mean thermal expansion.
+    template <class Pass>
+    void with_kernel(Pass&& pass) const
     {
-        using detail::load_chunk;
-        const double L = length[k];
-        const detail::vchunk tij = L * (load_chunk(p.data() + i0) * w_i[k] + load_chunk(p.data() + j) * w_j[k]
-                                        - third * (load_chunk(theta.data() + i0) * s_i[k] + load_chunk(theta.data() + j) * s_j[k]))
-                                   + (ylen - L) * (s_i[k] + s_j[k]);
-        return tij / ylen;
+        if (thermal.active() && thermal.bond_mean) pass(MeanThermalKernel{this, thermal.theta->data(), 0.5 * thermal.alpha, thermal.theta_ref});
+        else pass(*this);
     }
-#endif
 
     // W_i = K theta_i^2 / 2 + G (sigma_i e_d)•e_d (4.15) [J/m^3]; call after point_pass at y.
     template <int D>
@@ -150,11 +170,12 @@ struct PALS {
         static_assert(D == 3, "PALS is a 3D model");
         auto bond = [&](std::size_t i, std::int64_t k) {  // summed: 2G (sigma e_d)•e_d
             const double L = b.length[k];
-            const double ed = norm(y[b.partner[k]] - y[i]) - L - theta[i] * L * third;
+            const double eps = thermal.bond_mean ? thermal.pair_strain(i, static_cast<std::size_t>(b.partner[k])) : 0.0;  // header
+            const double ed = norm(y[b.partner[k]] - y[i]) - L * (1 + eps) - theta[i] * L * third;
             return s_i[k] * ed * ed;
         };
         return node_sums(b, bond, [&](std::size_t i, double dev) {
-            const double th = theta[i] - thermal.strain(i) * m_omega[i];  // the mechanical dilatation
+            const double th = thermal.bond_mean ? theta[i] : theta[i] - thermal.strain(i) * m_omega[i];  // the mechanical dilatation
             return 0.5 * K * th * th + 0.5 * dev;
         });
     }
@@ -166,8 +187,18 @@ private:
 
     // theta_i = (omega_i x)•e and p_i = (K + 2G m_sigma/9) theta - (2G/3)(sigma x)•e from the
     // two family sums (s_i already holds 2G sigma V), e the mechanical extension (header).
-    void set_dilatation(std::size_t i, double omega_xe, double sigma_xe)
+    void set_dilatation(const Bonds& b, std::size_t i, double omega_xe, double sigma_xe)
     {
+        if (thermal.active() && thermal.bond_mean) {
+            double Cw = 0, Cs = 0;  // C^w_i, C^s_i (header)
+            for_intact_bonds(b, i, [&](std::int64_t k, int j) {
+                const double e = length[k] * length[k] * thermal.pair_strain(i, static_cast<std::size_t>(j));
+                Cw += w_i[k] * e, Cs += s_i[k] * e;
+            });
+            theta[i] = omega_xe - Cw;
+            p[i] = (K + 2 * G * m_sigma[i] / 9) * theta[i] - third * (sigma_xe - Cs);
+            return;
+        }
         theta[i] = omega_xe;
         const double eps = thermal.strain(i);
         if (eps == 0) {

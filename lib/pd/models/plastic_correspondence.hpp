@@ -53,6 +53,8 @@ struct PlasticCorrespondence {
     void set_thermal_expansion(const ThermalExpansion& t)
     {
         t.validate(hist.size());
+        if (t.active() && t.bond_mean)
+            throw std::invalid_argument("PlasticCorrespondence: its thermal strain is a node's (bond_mean is for the ordinary models)");
         thermal = t;
     }
     const ThermalExpansion& thermal_expansion() const { return thermal; }

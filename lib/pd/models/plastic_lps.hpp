@@ -17,7 +17,8 @@
 // Thermal expansion (the wrapped LPS's set_thermal_expansion): lps.theta is the mechanical dilatation
 // theta - 3 eps_i, and e_de = e - eps_i |xi| - theta_mech |xi|/3 - e_dp (the isotropic thermal strain
 // leaves the deviatoric extension, hence the yield, untouched: a free or clamped heated body does
-// not flow); eps_i = 0 without it, exactly the isothermal result.
+// not flow); eps_i = 0 without it, exactly the isothermal result. With ThermalExpansion::bond_mean each
+// bond takes (eps_i + eps_j)/2 instead of eps_i (ThermalExpansion::bond_strain).
 // History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
@@ -79,9 +80,10 @@ struct PlasticLPS {
         parallel_for(b.nodes(), [&](std::size_t i) {
             const double th = lps.theta[i] / 3 + lps.thermal_expansion().strain(i);  // header
             double sum = 0;  // sum omega e_de^2 V [m^5] over intact bonds
-            for_family(b, i, [&](std::int64_t k, int) {
+            const ThermalExpansion& te = lps.thermal_expansion();
+            for_family(b, i, [&](std::int64_t k, int j) {
                 if (damaged && !b.intact[k]) { tdev[k] = 0; return; }
-                const double e = deviatoric_extension(b, y, i, k, th, edp_c);
+                const double e = deviatoric_extension(b, y, i, k, te.bond_mean ? lps.theta[i] / 3 + te.bond_strain(i, j) : th, edp_c);
                 tdev[k] = e;  // e_de until the return below
                 sum += lps.wV[k] * e * e;
             });
@@ -103,7 +105,7 @@ struct PlasticLPS {
     std::vector<double> energy_density(const Bonds& b, const Field<3>& y) const
     {
         auto bond = [&](std::size_t i, std::int64_t k) {
-            const double e = deviatoric_extension(b, y, i, k, lps.theta[i] / 3 + lps.thermal_expansion().strain(i), edp);
+            const double e = deviatoric_extension(b, y, i, k, lps.theta[i] / 3 + lps.thermal_expansion().bond_strain(i, b.partner[k]), edp);
             return b.omega[k] * e * e * b.volume[k];
         };
         return node_sums(b, bond, [&](std::size_t i, double dev) {

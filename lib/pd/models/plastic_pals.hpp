@@ -17,7 +17,9 @@
 // (tests/test_plastic_models.cpp); a broken bond keeps its committed e_dp and carries no force.
 // Thermal expansion (the wrapped PALS's set_thermal_expansion): pals.theta is the total dilatation, so
 // e_de is already the mechanical deviatoric extension (pals.hpp header); the isotropic part takes the
-// mechanical dilatation theta_i - eps_i m_omega_i (mechanical_dilatation).
+// mechanical dilatation theta_i - eps_i m_omega_i (mechanical_dilatation). The bond mean
+// (ThermalExpansion::bond_mean) is refused by point_pass (energy_density and mechanical_dilatation
+// assume the owner rule).
 // History protocol: plastic_points.hpp.
 #pragma once
 #include "pd/bond_loop.hpp"
@@ -74,6 +76,8 @@ struct PlasticPALS {
     }
     void point_pass(const Bonds& b, const Field<3>& y)
     {
+        if (pals.thermal_expansion().active() && pals.thermal_expansion().bond_mean)
+            throw std::invalid_argument("PlasticPALS: the bond-mean thermal strain is not written for its deviatoric extension (owner rule only)");
         pals.point_pass(b, y);
         const double G = pals.G;
         const bool damaged = b.has_damage();

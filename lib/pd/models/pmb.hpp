@@ -14,7 +14,7 @@
 // the pair force with its owner node's eps, spec/000a eq. 2.80); the bond pass then takes
 // ThermalKernel, which also gathers theta_j.
 // Cost: nodes with translated families (translated_families.hpp: same |xi| and coef bond by bond) take
-// the chunk path of the bond loop, W nodes at a time (chunk_scalar). Change coef only through
+// the chunk path of the bond loop, W nodes at a time (bond_scalar in detail::vchunk). Change coef only through
 // scale_bonds, which finds the runs again.
 #pragma once
 #include "pd/bond_loop.hpp"
@@ -74,8 +74,10 @@ struct PMB {
         else runs = {};  // bonds unknown: no chunks rather than stale ones
     }
 
-    // c omega V s / |Y| with s = (|Y| - |xi|)/|xi|: force on i is this times Y.
-    double bond_scalar(std::size_t, std::int64_t k, int, double ylen) const
+    // c omega V s / |Y| with s = (|Y| - |xi|)/|xi|: force on i is this times Y. T = double, or the lanes
+    // of a chunk (detail::vchunk; bond_loop.hpp).
+    template <class T>
+    T bond_scalar(std::size_t, std::int64_t k, int, const T& ylen) const
     {
         return coef[k] * (ylen - length[k]) / ylen;
     }
@@ -95,20 +97,13 @@ struct PMB {
         const PMB* pmb;
         const double* theta;  // node temperatures
         double half_alpha, theta_ref;
-        double bond_scalar(std::size_t i, std::int64_t k, int j, double ylen) const
+        template <class T>
+        T bond_scalar(std::size_t i, std::int64_t k, int j, const T& ylen) const
         {
-            const double rest = pmb->length[k] * (1 + half_alpha * ((theta[i] - theta_ref) + (theta[j] - theta_ref)));
+            const T rest = pmb->length[k] * (1 + half_alpha * ((node_value<T>(theta, i) - theta_ref) + (node_value<T>(theta, j) - theta_ref)));
             return pmb->coef[k] * (ylen - rest) / ylen;
         }
         const TranslatedRuns* chunks(const Bonds& b) const { return pmb->chunks(b); }
-#ifdef PD_CHUNK_WIDTH
-        detail::vchunk chunk_scalar(int i0, std::int64_t k, int j, const detail::vchunk& ylen) const
-        {
-            using detail::load_chunk;
-            const detail::vchunk rest = pmb->length[k] * (1 + half_alpha * ((load_chunk(theta + i0) - theta_ref) + (load_chunk(theta + j) - theta_ref)));
-            return pmb->coef[k] * (ylen - rest) / ylen;
-        }
-#endif
     };
     // The bond pass's kernel: this model, or ThermalKernel when thermal expansion is active.
     template <class Pass>
@@ -118,15 +113,9 @@ struct PMB {
         else pass(*this);
     }
 
-    // Chunk hooks of the bond loop (bond_loop.hpp): bond_scalar for the W nodes of a chunk.
+    // Chunk hook of the bond loop (bond_loop.hpp): the runs whose W nodes take bond_scalar at once.
     TranslatedRuns runs;
     const TranslatedRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
-#ifdef PD_CHUNK_WIDTH
-    detail::vchunk chunk_scalar(int, std::int64_t k, int, const detail::vchunk& ylen) const
-    {
-        return coef[k] * (ylen - length[k]) / ylen;
-    }
-#endif
 
     // Strain energy density W_i = 1/4 sum_j c omega s^2 |xi| V_j [J/m^3] (intact bonds; s mechanical).
     template <int D>

@@ -1,7 +1,9 @@
 // pd/models/thermal_expansion.hpp -- thermal expansion of the ordinary models (spec/000a sec. 2.11).
 // The mechanical extension of bond k (i -> j) is the extension less the free thermal one,
 //   e_mech = |Y| - |xi| - eps_i |xi|,   eps_i = alpha (theta_i - theta_ref)        (2.80, erratum E9)
-// with theta_i the temperature of the bond's owner node i, as the source's code; alpha is the linear
+// with theta_i the temperature of the bond's owner node i, as the source's code, or with bond_mean the
+// mean of the bond's two ends, eps_ij = (eps_i + eps_j)/2 (a bond between a hot and a cold node then has
+// one rest length seen from both ends; LPS and PALS); alpha is the linear
 // coefficient (erratum E6: ~1e-5 1/K). Both the dilatation and the forces use e_mech, so a body free
 // to expand by eps in every direction (y = (1 + eps) x) carries no force, and a body held at y = x is
 // under the hydrostatic stress -3 K eps (spec/000a V7).
@@ -36,6 +38,7 @@ struct ThermalExpansion {
     double alpha = 0;                            // linear thermal expansion coefficient [1/K]
     double theta_ref = 0;                        // temperature of the stress-free reference state [K or C]
     const std::vector<double>* theta = nullptr;  // node temperatures [as theta_ref]; null: no thermal strain
+    bool bond_mean = false;                      // bond i -> j takes (eps_i + eps_j)/2, not the owner's eps_i (header)
 
     bool active() const { return theta != nullptr; }
     // eps_i = alpha (theta_i - theta_ref) [-]; 0 when inactive.
@@ -45,6 +48,8 @@ struct ThermalExpansion {
     {
         return theta ? 0.5 * alpha * (((*theta)[i] - theta_ref) + ((*theta)[j] - theta_ref)) : 0.0;
     }
+    // The free thermal strain of bond i -> j by the rule above: eps_i, or (eps_i + eps_j)/2 with bond_mean [-].
+    double bond_strain(std::size_t i, std::size_t j) const { return bond_mean ? pair_strain(i, j) : strain(i); }
     // Throws std::invalid_argument naming what is wrong (a model calls it when attached).
     void validate(std::size_t nodes, bool plane_strain_2d = false) const
     {

@@ -19,7 +19,8 @@
 // (e_d, e_db, committed and trial) exists only in scenes that use this model.
 // Thermal expansion (the wrapped LPS's set_thermal_expansion): lps.theta is the mechanical dilatation
 // theta - D eps_i, so e_d = e - eps_i |xi| - theta_mech |xi|/D, the deviatoric extension of e_mech (the
-// isotropic thermal strain does not load the branch).
+// isotropic thermal strain does not load the branch); with ThermalExpansion::bond_mean each bond takes
+// (eps_i + eps_j)/2 instead of eps_i (ThermalExpansion::bond_strain).
 // Dissipation (7.10): the energy dissipated by the dashpots of node i over the trial step [J/m^3],
 //   D_i = sum_k (alpha_b,i omega V_j / tau_b) int (e_d - e_db)^2 dt   (laws/maxwell.hpp, exact per step).
 #pragma once
@@ -106,7 +107,7 @@ struct ViscoelasticLPS {
                     return;
                 }
                 const double L = b.length[k];
-                const double ed = norm(y[j] - y[i]) - L - lps.theta[i] * L / dim - lps.thermal_expansion().strain(i) * L;  // (4.9), header
+                const double ed = norm(y[j] - y[i]) - L - lps.theta[i] * L / dim - lps.thermal_expansion().bond_strain(i, j) * L;  // (4.9), header
                 const double edb = laws::maxwell_update(edb_c[k], ed_c[k], ed, c);            // (7.27)
                 ed_t[k] = ed, edb_t[k] = edb;
                 tv[k] = alpha_b * (ed - edb);                                                  // (7.21), branch part

@@ -3,7 +3,9 @@
 // (PD_CHUNK_WIDTH undefined) and every node takes the per-node code. Written with GCC vector
 // extensions, so the compiler picks the instructions; loads and stores are unaligned.
 #pragma once
+#include <cstddef>
 #include <cstring>
+#include <type_traits>
 
 #if defined(__AVX512F__)
 #define PD_CHUNK_WIDTH 8
@@ -38,3 +40,18 @@ inline vchunk sqrt_chunk(const vchunk& v)
 
 }  // namespace pd::detail
 #endif
+
+namespace pd {
+// A per-node array's value in a bond formula written once for both paths of the bond loop
+// (bond_loop.hpp; bond_scalar of models/pmb.hpp, lps.hpp, pals.hpp): a[i] when the formula is taken in
+// double (one node), the W contiguous values a[i .. i + W - 1] in detail::vchunk (the lanes of a chunk).
+template <class T>
+inline T node_value(const double* a, std::size_t i)
+{
+#ifdef PD_CHUNK_WIDTH
+    if constexpr (std::is_same_v<T, detail::vchunk>) return detail::load_chunk(a + i);
+    else
+#endif
+        return a[i];
+}
+}  // namespace pd
