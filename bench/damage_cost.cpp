@@ -83,7 +83,7 @@ Scene make_scene(double delta, double m, double strain_factor)
     s.strain = strain_factor * s.s0;
     const pd::Bonds b = pd::build_bonds(s.body, delta);
     const double c = pd::PMB::micromodulus({s.mat, 3}, pd::Influence{}, delta);
-    s.dt = 0.5 * pd::critical_step_silling_askari(b, std::vector<double>(s.body.size(), rho_si3n4), c).dt;
+    s.dt = 0.5 * pd::critical_step_silling_askari(b, rho_si3n4, c).dt;
     return s;
 }
 

@@ -68,7 +68,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too).
     const pd::PMB::Params pmb{.material = cfg.material, .dim = D, .plane = cfg.plane, .measure = cfg.measure};
     const double c = pd::PMB::micromodulus(pmb, bonds.influence, bonds.delta);
-    const pd::CriticalStep crit = pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), cfg.rho), c);
+    const pd::CriticalStep crit = pd::critical_step_silling_askari(bonds, cfg.rho, c);
     if (std::isnan(cfg.dt)) {
         if (!std::isfinite(crit.dt)) fail("option --dt is required: no point has a bond within --delta");
         cfg.dt = dt_safety * crit.dt;

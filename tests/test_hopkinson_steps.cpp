@@ -61,7 +61,7 @@ TEST(HopkinsonSteps, MechanicalStableStepOf316LIs0053us)
     for (const auto& [delta, expected] : {std::pair{1e-3, 0.0530e-6}, std::pair{0.5e-3, 0.0265e-6}}) {
         const Lattice L(delta);
         const double c_pmb = 18 * K / (std::numbers::pi * std::pow(delta, 4));
-        const CriticalStep s = critical_step_silling_askari(L.bonds, std::vector<double>(L.body.size(), rho), c_pmb);
+        const CriticalStep s = critical_step_silling_askari(L.bonds, rho, c_pmb);
         EXPECT_NEAR(s.dt, expected, 0.00005e-6) << "delta " << delta;  // half a unit of the spec's last digit
     }
 }

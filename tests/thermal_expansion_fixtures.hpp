@@ -24,10 +24,11 @@ inline const Elastic mat = Elastic::from_E_nu(200e9, 0.25);
 
 inline Body<3> bar() { return box<3>({{0, 0, 0}}, {{20 * dx, 5 * dx, 4 * dx}}, dx); }
 
-inline Field<3> scaled(const Body<3>& body, double s)
+template <int D>
+Field<D> scaled(const Body<D>& body, double s)
 {
-    Field<3> y = body.x;
-    for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v *= s;
+    Field<D> y = body.x;
+    for (int d = 0; d < D; ++d) for (auto& v : y.c[d]) v *= s;
     return y;
 }
 inline double max_norm(const Field<3>& f)

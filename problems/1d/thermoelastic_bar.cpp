@@ -171,7 +171,7 @@ static int run_case(int argc, char** argv)
         const double c = pd::PMB::micromodulus({.material = pd::Elastic::from_E_nu(b.E, 0.25), .dim = 1, .measure = area}, pd::Influence{}, delta);
         const pd::Body<1> body = pd::box<1>({-delta}, {b.L + delta}, dx, area);
         const pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::PartialVolume::pa_pdlammps, .keep = {}});
-        const double dt_sa = pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), b.rho), c).dt;
+        const double dt_sa = pd::critical_step_silling_askari(bonds, b.rho, c).dt;
         return 1000 * static_cast<long>(std::ceil(t_end / (dt_factor * dt_sa) / 1000));
     };
 

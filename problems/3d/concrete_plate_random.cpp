@@ -88,7 +88,7 @@ static int run_case(int argc, char** argv)
                                  .dx = dx};
     const double c = pd::PMB::micromodulus(params, pd::Influence{}, delta);
     const double E_ps = E / (1 - nu * nu);  // plane-strain uniaxial modulus [Pa]
-    const double dt = dt_factor * pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), rho), c).dt;
+    const double dt = dt_factor * pd::critical_step_silling_askari(bonds, rho, c).dt;
     pd::require_steps(seeds * std::ceil(t_end / dt), "--t-end / dt x --seeds");
     const long steps = static_cast<long>(std::ceil(t_end / dt));
     const long every = std::max(1L, steps / 400);  // ~400 curve samples

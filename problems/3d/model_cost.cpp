@@ -123,7 +123,7 @@ static int run_case(int argc, char** argv)
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     const pd::PMB::Params pmb_params{.material = mat, .dim = 3};
     const double c_pmb = pd::PMB::micromodulus(pmb_params, pd::Influence{}, delta);
-    const double dt = dt_factor * pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), rho), c_pmb).dt;
+    const double dt = dt_factor * pd::critical_step_silling_askari(bonds, rho, c_pmb).dt;
     const Scene sc{body, bonds, fixed, pulled, rho, dt, strain * L, steps};
     const std::vector<std::string> names{"pmb", "lps", "lps_scf", "pals", "correspondence"};
     auto make = [&](std::size_t k) -> Runner {

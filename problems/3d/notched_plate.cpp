@@ -187,7 +187,7 @@ int run_case(int argc, char** argv)
     {
         const pd::Bonds b = pd::build_bonds(s.body, s.delta);
         const double c = pd::PMB::micromodulus({s.mat, 3}, pd::Influence{}, s.delta);
-        s.dt = opt.get("dt-factor") * pd::critical_step_silling_askari(b, std::vector<double>(s.body.size(), s.rho), c).dt;
+        s.dt = opt.get("dt-factor") * pd::critical_step_silling_askari(b, s.rho, c).dt;
         std::printf("nodes %zu, bonds %zu, dx %.4g m, dt %.4g s, steps %ld, s0 (MO 3D) %.4g, w_C %.4g J/m^6\n", s.body.size(),
                     b.size(), s.dx, s.dt, std::lround(s.t_end / s.dt), pd::s0_madenci_oterkus_3d(s.Gc, s.mat, s.delta),
                     pd::w_critical(s.Gc, s.delta));

@@ -173,7 +173,7 @@ static int run_case(int argc, char** argv)
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     const pd::PMB::Params pmb{.material = mat, .dim = 3};
     const double c = pd::PMB::micromodulus(pmb, pd::Influence{}, delta);  // also the LPS stand-in (critical_step.hpp)
-    const double dt = dt_factor * pd::critical_step_silling_askari(bonds, std::vector<double>(body.size(), rho), c).dt;
+    const double dt = dt_factor * pd::critical_step_silling_askari(bonds, rho, c).dt;
     std::printf("dt %.4g s, up to %ld steps\n", dt, static_cast<long>(std::ceil(t_end / dt)));
 
     // 4.-5. Impactor and integration.

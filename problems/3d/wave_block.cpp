@@ -132,7 +132,7 @@ static int run_case(int argc, char** argv)
     const pd::Elastic mat = pd::Elastic::from_E_nu(E, nu);
     const pd::PMB::Params pmb_params{.material = mat, .dim = 3};
     const double c_pmb = pd::PMB::micromodulus(pmb_params, influence, delta);  // also the LPS stand-in (critical_step.hpp)
-    const double dt_crit = pd::critical_step_silling_askari(bonds, std::vector<double>(blk.body.size(), rho), c_pmb).dt;
+    const double dt_crit = pd::critical_step_silling_askari(bonds, rho, c_pmb).dt;
     pd::ref::WaveMaterial wm{model_name == "pmb" ? pd::ref::WaveMaterial::Model::pmb : pd::ref::WaveMaterial::Model::lps,
                              mat.K, mat.G, rho, delta, [&](double r) { return influence(r, delta); }};
     const double cP = pd::ref::p_wave_speed(wm);

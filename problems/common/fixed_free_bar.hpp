@@ -90,7 +90,7 @@ inline FixedFreeBarRun release_fixed_free_bar(const FixedFreeBar& b, const std::
     const PMB::Params pp{.material = Elastic::from_E_nu(b.E, 0.25),  // 1D: only kappa_1 = E enters
                          .dim = 1, .measure = b.A, .calibration = b.cal, .dx = r.dx};
     const double c = PMB::micromodulus(pp, b.w, r.delta);  // [N/m^4 in 1D]
-    r.dt_crit = critical_step_silling_askari(bonds, std::vector<double>(body.size(), b.rho), c).dt;
+    r.dt_crit = critical_step_silling_askari(bonds, b.rho, c).dt;
     const double dt_max = dt_scale * r.dt_crit;  // [s]
     const long k = std::max(1L, static_cast<long>(1.0 / (b.f1 * b.samples * dt_max)));  // steps per sample
     require_steps(std::ceil(t_end / dt_max), "--t-end / dt");

@@ -164,7 +164,7 @@ public:
     double stable_step() const
     {
         const double c = PMB::micromodulus({p.mat, 3}, Influence{}, p.delta);
-        return p.dt_factor * critical_step_silling_askari(bonds, std::vector<double>(d.body.size(), p.rho), c).dt;
+        return p.dt_factor * critical_step_silling_askari(bonds, p.rho, c).dt;
     }
 
     void print() const

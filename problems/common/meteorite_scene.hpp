@@ -188,7 +188,7 @@ struct MeteoriteMechanics {
     double stable_step(double dt_factor) const
     {
         const double c = PMB::micromodulus({sc.p.mat, 3}, Influence{}, sc.p.delta);
-        return dt_factor * critical_step_silling_askari(bonds, std::vector<double>(sc.s.body.size(), sc.p.rho), c).dt;
+        return dt_factor * critical_step_silling_askari(bonds, sc.p.rho, c).dt;
     }
     // Damage of body node i over its bonds to body nodes only (the shell's bonds, which may tear as the
     // shell detaches, left out): 1 - intact V / all V.

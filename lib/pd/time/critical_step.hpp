@@ -32,6 +32,12 @@ inline CriticalStep critical_step_silling_askari(const Bonds& b, const std::vect
     return r;
 }
 
+// The same with one density rho [kg/m^3] for every node.
+inline CriticalStep critical_step_silling_askari(const Bonds& b, double rho, double c)
+{
+    return critical_step_silling_askari(b, std::vector<double>(b.nodes(), rho), c);
+}
+
 inline double critical_step_cfl(double h, double wave_speed) { return h / wave_speed; }
 
 }  // namespace pd

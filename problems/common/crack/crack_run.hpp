@@ -61,7 +61,7 @@ inline PMB make_pmb(const Material2D& mat, const Bonds& bonds, RunInfo& info)
     PMB model(p, bonds);
     info.c = model.c;
     info.s0 = s0_pmb(mat.Gc, mat.E, bonds.delta, 2, mat.plane);
-    info.dt_crit = critical_step_silling_askari(bonds, std::vector<double>(bonds.nodes(), mat.rho), model.c).dt;
+    info.dt_crit = critical_step_silling_askari(bonds, mat.rho, model.c).dt;
     return model;
 }
 
@@ -72,7 +72,7 @@ inline PMB make_pmb(const Material3D& mat, const Bonds& bonds, RunInfo& info)
     PMB model(p, bonds);
     info.c = model.c;
     info.s0 = s0_pmb(mat.Gc, mat.E, bonds.delta, 3, Plane::stress);
-    info.dt_crit = critical_step_silling_askari(bonds, std::vector<double>(bonds.nodes(), mat.rho), model.c).dt;
+    info.dt_crit = critical_step_silling_askari(bonds, mat.rho, model.c).dt;
     return model;
 }
 
