@@ -27,7 +27,11 @@ using pd::ref::ThermoelasticBar;
 
 TEST(ThermoelasticBarReference, HotEndRisesWithZeroFirstAndSecondDerivativesAtBothEnds)
 {
-    const double tr = 2e-3, h = 1e-6 * tr;
+    // Central differences of step h: the truncation error at an end is 10 h / tr^3 in r'' (the third
+    // derivative jumps to 60/tr^3 there) and the round-off about 4 ulp(1) / h^2 near r = 1; h = 1e-5 tr
+    // makes them 1e-4 and 4e-6 of 1/tr^2, below the bound 1e-3/tr^2 with or without FMA (h = 1e-6 tr
+    // gave a round-off of 1.1e-3/tr^2 in the sanitize build, which has no FMA).
+    const double tr = 2e-3, h = 1e-5 * tr;
     auto r = [&](double t) { return pd::ref::thermoelastic_ramp(t, tr); };
     EXPECT_EQ(r(0), 0.0);
     EXPECT_EQ(r(tr), 1.0);
