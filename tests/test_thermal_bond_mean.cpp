@@ -178,26 +178,13 @@ TEST(ThermalBondMean, ForceIsEnergyGradientUnderATemperatureField)
     }
 }
 
-// The chunk path (undamaged bonds) against the per-node path (damage enabled, none broken): the same
-// terms in another order (1e-12 of the largest force).
+// The chunk path against the per-node path (expect_chunk_path_matches_per_node: 1e-12 of the largest force).
 TEST(ThermalBondMean, ChunkedAndPerNodePathsAgree)
 {
     const Body<3> body = bar();
-    Bonds chunked = build_bonds(body, 3 * dx), per_node = chunked;
-    per_node.enable_damage();
     const std::vector<double> theta = random_temperatures(body.size(), 7, 10);
     const Field<3> y = perturbed(body, 8);
-    std::vector<Field<3>> ref;
-    for_each_ordinary_model(per_node, body, theta, true, [&](const char*, auto& model) { internal_force(model, per_node, y, ref.emplace_back()); });
-    int q = 0;
-    for_each_ordinary_model(chunked, body, theta, true, [&](const char* name, auto& model) {
-#ifdef PD_CHUNK_WIDTH
-        ASSERT_FALSE(model.runs.chunk_start.empty()) << name << ": no chunks on this bar";
-#endif
-        Field<3> f;
-        internal_force(model, chunked, y, f);
-        expect_forces_near(f, ref[q++], 1e-12, name);
-    });
+    expect_chunk_path_matches_per_node(body, y, [&](const Bonds& b, auto&& fn) { for_each_ordinary_model(b, body, theta, true, fn); });
 }
 
 // The LPS wrappers take the bond's strain in their deviatoric extension: under the linear field of

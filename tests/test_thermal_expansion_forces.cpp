@@ -60,23 +60,11 @@ TEST(ThermalExpansion, ForceIsEnergyGradientUnderATemperatureField)
 TEST(ThermalExpansion, ChunkedAndPerNodePathsAgreeUnderATemperatureField)
 {
     const Body<3> body = bar();
-    Bonds chunked = build_bonds(body, 3 * dx), per_node = chunked;
-    per_node.enable_damage();
     std::mt19937 gen(7);
     std::uniform_real_distribution<double> T(-10, 10), U(-1e-7, 1e-7);
     std::vector<double> theta(body.size());
     for (auto& t : theta) t = theta_ref + heat + T(gen);
     Field<3> y = body.x;
     for (int d = 0; d < 3; ++d) for (auto& v : y.c[d]) v += U(gen);
-    std::vector<Field<3>> ref;
-    for_each_model(per_node, body, &theta, [&](const char*, auto& model) { internal_force(model, per_node, y, ref.emplace_back()); });
-    int q = 0;
-    for_each_model(chunked, body, &theta, [&](const char* name, auto& model) {
-#ifdef PD_CHUNK_WIDTH
-        ASSERT_FALSE(model.runs.chunk_start.empty()) << name << ": no chunks on this bar";
-#endif
-        Field<3> f;
-        internal_force(model, chunked, y, f);
-        expect_forces_near(f, ref[q++], 1e-12, name);
-    });
+    expect_chunk_path_matches_per_node(body, y, [&](const Bonds& b, auto&& fn) { for_each_model(b, body, &theta, fn); });
 }

@@ -1,8 +1,11 @@
 // Shared set-up of the thermal-expansion tests of the ordinary models (test_thermal_expansion.cpp,
 // test_thermal_expansion_forces.cpp): the steel and heating, the 20-node bar, a uniformly scaled body,
-// the largest nodal norm and the models (PMB, LPS, LPS+SCF, PALS) with or without thermal expansion.
+// the largest nodal norm, the comparison of two force fields and of the chunk path with the per-node
+// path, and the models (PMB, LPS, LPS+SCF, PALS) with or without thermal expansion.
 #pragma once
 
+#include "pd/bond_loop.hpp"
+#include "pd/core/bonds.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/models/lps.hpp"
 #include "pd/models/pals.hpp"
@@ -42,6 +45,26 @@ inline void expect_forces_near(const Field<3>& f, const Field<3>& ref, double re
 {
     const double scale = max_norm(ref);
     for (std::size_t i = 0; i < f.size(); ++i) EXPECT_LE(norm(f[i] - ref[i]), rel * scale) << label << " node " << i;
+}
+// The chunk path (bonds without damage) against the per-node path (the same bonds with damage enabled
+// and none broken) at y: for_each(bonds, fn) calls fn(name, model) for each model on those bonds; the
+// same terms summed in another order, so equal to 1e-12 of the largest force.
+template <class ForEach>
+void expect_chunk_path_matches_per_node(const Body<3>& body, const Field<3>& y, ForEach&& for_each)
+{
+    Bonds chunked = build_bonds(body, 3 * dx), per_node = chunked;
+    per_node.enable_damage();
+    std::vector<Field<3>> ref;
+    for_each(per_node, [&](const char*, auto& model) { internal_force(model, per_node, y, ref.emplace_back()); });
+    int q = 0;
+    for_each(chunked, [&](const char* name, auto& model) {
+#ifdef PD_CHUNK_WIDTH
+        ASSERT_FALSE(model.runs.chunk_start.empty()) << name << ": no chunks on this bar";
+#endif
+        Field<3> f;
+        internal_force(model, chunked, y, f);
+        expect_forces_near(f, ref[q++], 1e-12, name);
+    });
 }
 // The models on b, each with thermal expansion from theta (null: none): PMB, LPS (intact and
 // reference weighted volume), LPS+SCF and PALS.

@@ -208,16 +208,14 @@ struct LPS {
         }
         const TranslatedRuns* chunks(const Bonds& b) const { return runs->fits(b) && !runs->chunk_start.empty() ? runs : nullptr; }
     };
-    // Kernel with the bond-mean thermal strain (header): e less eps_ij |xi|, eps_ij = h ((T_i - T_ref) + (T_j - T_ref)),
-    // h = alpha / 2 (ThermalExpansion::pair_strain's operations).
+    // Kernel with the bond-mean thermal strain (header): e less eps_ij |xi| (ThermalExpansion::PairStrain).
     struct MeanThermalKernel : Kernel {
-        const double* T;         // node temperatures [K]
-        double h = 0, T_ref = 0;  // alpha / 2 [1/K], reference temperature [K]
+        ThermalExpansion::PairStrain pair;
         template <class V>
         V bond_scalar(std::size_t i, std::int64_t k, int j, const V& ylen) const
         {
             const double L = length[k];
-            const V eps = h * ((node_value<V>(T, i) - T_ref) + (node_value<V>(T, j) - T_ref));
+            const V eps = pair.at<V>(i, j);
             const V tij = L * (node_value<V>(a, i) + node_value<V>(a, j)) + (node_value<V>(alpha, i) + node_value<V>(alpha, j)) * (ylen - L * (1 + eps));
             return tij * wV[k] / ylen;
         }
@@ -227,7 +225,7 @@ struct LPS {
     template <class Pass>
     void with_kernel(Pass&& pass) const
     {
-        if (thermal.active() && thermal.bond_mean) pass(MeanThermalKernel{kernel(), thermal.theta->data(), 0.5 * thermal.alpha, thermal.theta_ref});
+        if (thermal.active() && thermal.bond_mean) pass(MeanThermalKernel{kernel(), thermal.pair_strains()});
         else pass(kernel());
     }
 

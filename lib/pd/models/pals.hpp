@@ -140,17 +140,16 @@ struct PALS {
     }
     // Chunk hook of the bond loop (bond_loop.hpp): the runs whose W nodes take bond_scalar at once.
     const TranslatedRuns* chunks(const Bonds& b) const { return runs.fits(b) && !runs.chunk_start.empty() ? &runs : nullptr; }
-    // Kernel with the bond-mean thermal strain (header): bond_scalar with e less eps_ij |xi|,
-    // eps_ij = h ((T_i - T_ref) + (T_j - T_ref)), h = alpha / 2 (ThermalExpansion::pair_strain's operations).
+    // Kernel with the bond-mean thermal strain (header): bond_scalar with e less eps_ij |xi|
+    // (ThermalExpansion::PairStrain).
     struct MeanThermalKernel {
         const PALS* m;
-        const double* T;          // node temperatures [K]
-        double h = 0, T_ref = 0;  // alpha / 2 [1/K], reference temperature [K]
+        ThermalExpansion::PairStrain pair;
         template <class V>
         V bond_scalar(std::size_t i, std::int64_t k, int j, const V& ylen) const
         {
             const double L = m->length[k];
-            const V eps = h * ((node_value<V>(T, i) - T_ref) + (node_value<V>(T, j) - T_ref));
+            const V eps = pair.at<V>(i, j);
             return m->bond_scalar(i, k, j, ylen) - eps * L * (m->s_i[k] + m->s_j[k]) / ylen;
         }
         const TranslatedRuns* chunks(const Bonds& b) const { return m->chunks(b); }
@@ -159,7 +158,7 @@ struct PALS {
     template <class Pass>
     void with_kernel(Pass&& pass) const
     {
-        if (thermal.active() && thermal.bond_mean) pass(MeanThermalKernel{this, thermal.theta->data(), 0.5 * thermal.alpha, thermal.theta_ref});
+        if (thermal.active() && thermal.bond_mean) pass(MeanThermalKernel{this, thermal.pair_strains()});
         else pass(*this);
     }
 

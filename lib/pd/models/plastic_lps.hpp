@@ -78,12 +78,11 @@ struct PlasticLPS {
         const double G = lps.G;
         const bool damaged = b.has_damage();
         parallel_for(b.nodes(), [&](std::size_t i) {
-            const double th = lps.theta[i] / 3 + lps.thermal_expansion().strain(i);  // header
             double sum = 0;  // sum omega e_de^2 V [m^5] over intact bonds
-            const ThermalExpansion& te = lps.thermal_expansion();
             for_family(b, i, [&](std::int64_t k, int j) {
                 if (damaged && !b.intact[k]) { tdev[k] = 0; return; }
-                const double e = deviatoric_extension(b, y, i, k, te.bond_mean ? lps.theta[i] / 3 + te.bond_strain(i, j) : th, edp_c);
+                const double th = lps.theta[i] / 3 + lps.thermal_expansion().bond_strain(i, j);  // header
+                const double e = deviatoric_extension(b, y, i, k, th, edp_c);
                 tdev[k] = e;  // e_de until the return below
                 sum += lps.wV[k] * e * e;
             });

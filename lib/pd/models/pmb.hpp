@@ -95,12 +95,11 @@ struct PMB {
     // Bond kernel with thermal expansion (header): bond_scalar with |xi| (1 + eps_ij) for |xi| in e.
     struct ThermalKernel {
         const PMB* pmb;
-        const double* theta;  // node temperatures
-        double half_alpha, theta_ref;
+        ThermalExpansion::PairStrain eps;
         template <class T>
         T bond_scalar(std::size_t i, std::int64_t k, int j, const T& ylen) const
         {
-            const T rest = pmb->length[k] * (1 + half_alpha * ((node_value<T>(theta, i) - theta_ref) + (node_value<T>(theta, j) - theta_ref)));
+            const T rest = pmb->length[k] * (1 + eps.at<T>(i, j));
             return pmb->coef[k] * (ylen - rest) / ylen;
         }
         const TranslatedRuns* chunks(const Bonds& b) const { return pmb->chunks(b); }
@@ -109,7 +108,7 @@ struct PMB {
     template <class Pass>
     void with_kernel(Pass&& pass) const
     {
-        if (thermal.active()) pass(ThermalKernel{this, thermal.theta->data(), 0.5 * thermal.alpha, thermal.theta_ref});
+        if (thermal.active()) pass(ThermalKernel{this, thermal.pair_strains()});
         else pass(*this);
     }
 

@@ -26,6 +26,8 @@
 // Flanagan-Taylor increment, the branch sees only the deviator), PALS (per node, see pals.hpp) and the
 // viscoelastic LPS and plastic LPS and PALS wrappers (their deviatoric extension).
 #pragma once
+#include "pd/simd/chunk_vector.hpp"
+
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
@@ -50,6 +52,18 @@ struct ThermalExpansion {
     }
     // The free thermal strain of bond i -> j by the rule above: eps_i, or (eps_i + eps_j)/2 with bond_mean [-].
     double bond_strain(std::size_t i, std::size_t j) const { return bond_mean ? pair_strain(i, j) : strain(i); }
+    // pair_strain for a bond formula written once for both paths of the bond loop (node_value,
+    // simd/chunk_vector.hpp): the thermal kernels' (eps_i + eps_j)/2 of one node or of a chunk's lanes.
+    struct PairStrain {
+        const double* theta;      // node temperatures
+        double half_alpha, theta_ref;  // alpha / 2 [1/K], reference temperature
+        template <class V>
+        V at(std::size_t i, int j) const
+        {
+            return half_alpha * ((node_value<V>(theta, i) - theta_ref) + (node_value<V>(theta, static_cast<std::size_t>(j)) - theta_ref));
+        }
+    };
+    PairStrain pair_strains() const { return {theta->data(), 0.5 * alpha, theta_ref}; }  // active only
     // Throws std::invalid_argument naming what is wrong (a model calls it when attached).
     void validate(std::size_t nodes, bool plane_strain_2d = false) const
     {
