@@ -11,11 +11,13 @@
 // with the point damage phi in the state files (pd/damage/critical_stretch.hpp).
 // Heat conduction (issue 4, problems/pd_run_heat.hpp): --heat agwai|correspondence adds a temperature
 // field (columns T0, T_fixed) integrated by explicit/implicit Euler or CVODE; --mechanics off runs it alone.
+// Dissipation (problems/pd_run_dissipation.hpp): --plasticity johnson-cook (3D) or --viscoelastic sls; with
+// --heat the dissipated energy warms the points every --nsync-mh steps, and state files get ep.
 // Run:    pd_run --input cloud.csv --E 200e9 --nu 0.25 --rho 7800 --delta 3e-3 --steps 1000
 //         [--model pmb|lps|scf|pals|correspondence] [--hourglass C] [--dim 1|2|3] [--output-steps 0,500,1000]
 //         [--vtu-every 100] [--s0 1e-3] [--heat agwai --k 50 --cv 500 [--mechanics off --thermal-steps 100]] [--help]
-// Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J),
-//         DIR/state_stepNNNN.csv (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,damage][,T,Q_W_m3]), DIR/state_stepNNNN.vtu +
+// Writes: DIR/params.csv, DIR/energy.csv (step,t_s,kinetic_J,strain_J,external_work_J,total_J[,dissipated_heat_J]),
+//         DIR/state_stepNNNN.csv (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,damage][,ep][,T,Q_W_m3]), DIR/state_stepNNNN.vtu +
 //         state.pvd, with --heat DIR/heat.csv (thermal_step,t_s,heat_J,T_min,T_max).
 // Checkpoints (problems/pd_run_checkpoint.hpp): --checkpoint-every k, --restart FILE; SIGINT/SIGTERM
 // stop after the current step with a checkpoint.
@@ -28,6 +30,7 @@
 #include "pd/time/critical_step.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_checks.hpp"
+#include "pd_run_dissipation.hpp"
 #include "pd_run_integrate.hpp"
 
 #include <algorithm>
@@ -65,9 +68,11 @@ int run(Run cfg, const pd::io::PointCloud& pc)
         return integrate_heat<D>(cfg, pc, *heat);
     }
 
-    // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too).
+    // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too), times
+    // 1 + gamma_b for a standard linear solid: its instantaneous shear modulus is G (1 + gamma_b).
     const pd::PMB::Params pmb{.material = cfg.material, .dim = D, .plane = cfg.plane, .measure = cfg.measure};
-    const double c = pd::PMB::micromodulus(pmb, bonds.influence, bonds.delta);
+    const bool viscous = cfg.dissipation.kind == pd::Dissipation::Kind::viscoelastic;
+    const double c = pd::PMB::micromodulus(pmb, bonds.influence, bonds.delta) * (viscous ? 1 + cfg.dissipation.gamma_b : 1.0);
     const pd::CriticalStep crit = pd::critical_step_silling_askari(bonds, cfg.rho, c);
     if (std::isnan(cfg.dt)) {
         if (!std::isfinite(crit.dt)) fail("option --dt is required: no point has a bond within --delta");
@@ -85,16 +90,20 @@ int run(Run cfg, const pd::io::PointCloud& pc)
     const Conventions& cv = cfg.conventions;
     const pd::ModelChoice choice{.name = cfg.model, .material = cfg.material, .plane = cfg.plane, .measure = cfg.measure, .C_hg = cfg.hourglass,
                                  .hypoelastic = cv.hypoelastic, .hourglass_direction = cv.hourglass, .rotation = cv.rotation, .pals_base = cv.pals_base};
-    return pd::with_model(choice, body, bonds, [&](auto& model) {
+    auto simulate = [&](auto& model) {
         using Model = std::decay_t<decltype(model)>;
         if constexpr (std::is_same_v<Model, pd::Correspondence<D>>) warn_singular_shape_tensors(model, D);
+        if constexpr (requires { model.model.Kinv; }) warn_singular_shape_tensors(model.model, D);  // the inelastic correspondence
         if constexpr (std::is_same_v<Model, pd::PMB>) pd::apply_surface_correction(model, body, bonds, cfg.surface);
         if constexpr (std::is_same_v<Model, pd::LPS>)
             if (cfg.model == "lps")
                 pd::apply_surface_correction(model, body, bonds, cfg.surface,
                                              {.reference = pd::SurfaceCorrectionOptions::Reference::classical});
         return integrate<D>(cfg, pc, body, bonds, model, heat.get());
-    });
+    };
+    if constexpr (D >= 2)  // the inelastic models (pd_run_dissipation.hpp)
+        if (cfg.dissipation.kind != pd::Dissipation::Kind::none) return pd::with_dissipative_model(choice, cfg.dissipation, body, bonds, simulate);
+    return pd::with_model(choice, body, bonds, simulate);
 }
 
 
@@ -141,27 +150,17 @@ int main(int argc, char** argv)
     const std::string& mech = opt.add_string("mechanics", "on", "off: heat conduction only (needs --heat)", {"on", "off"});
     const pd_run::HeatOptions heat = pd_run::add_heat_options(opt, automatic);
     const pd_run::ConventionOptions conventions = pd_run::add_convention_options(opt);
-    for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt", "k", "cv", "dt-thermal", "s0"})
+    const pd_run::DissipationOptions dissipation = pd_run::add_dissipation_options(opt, automatic);
+    for (const char* name : {"K", "G", "rho", "delta", "dx", "thickness", "area", "dt", "k", "cv", "dt-thermal", "s0", "sls-tau"})
         opt.require_positive(name);
-    opt.require_at_least("thermal-steps", 0);
     opt.require_range("dim", 1, 3);
-    opt.require_at_least("steps", 0);
     opt.require_at_least("energy-every", 1);
-    opt.require_at_least("vtu-every", 0);
-    opt.require_at_least("threads", 0);
-    for (const char* name : {"checkpoint-every", "max-steps"}) opt.require_at_least(name, 0);
+    for (const char* name : {"thermal-steps", "steps", "vtu-every", "threads", "checkpoint-every", "max-steps"}) opt.require_at_least(name, 0);
     opt.parse(argc, argv);
 
     for (const char* name : {"input", "rho", "delta"})
         if (!opt.given(name)) fail(std::string("option --") + name + " is required (see --help)");
-    if (opt.given("plane") && dim != 2) fail("option --plane applies to --dim 2 only");
-    if (opt.given("thickness") && dim != 2) fail("option --thickness applies to --dim 2 only");
-    if (opt.given("area") && dim != 1) fail("option --area applies to --dim 1 only");
-    if (pv == "pa-pdlammps" && !opt.given("dx")) fail("option --partial-volume pa-pdlammps needs --dx (the lattice spacing)");
-    if (model == "pals" && dim != 3) fail("option --model pals needs --dim 3");
-    if (model == "correspondence" && dim == 1) fail("option --model correspondence needs --dim 2 or 3");
-    if (surface == "energy" && model == "pmb" && !opt.given("dx")) fail("option --surface-correction energy needs --dx (the lattice spacing)");
-    if (surface == "energy" && model != "pmb" && model != "lps") fail("option --surface-correction energy applies to --model pmb or lps only");
+    check_model_options(opt, dim, model, surface, pv);
     const bool mechanics = mech == "on";
     if (!mechanics && heat.heat == "none") fail("option --mechanics off needs --heat agwai|correspondence");
     for (const char* name : {"E", "nu", "K", "G", "model", "hourglass", "surface-correction", "plane", "dt", "steps", "s0", "conventions",
@@ -175,6 +174,8 @@ int main(int argc, char** argv)
     cfg.model = model == "scf" ? "lps-scf" : model;
     cfg.hourglass = hourglass;
     if (mechanics) cfg.conventions = pd_run::resolve_conventions(opt, conventions, cfg.model, dim, fail);
+    cfg.dissipation = pd_run::dissipation_settings(opt, dissipation, cfg.model, dim, mechanics, heat.heat != "none", cfg.conventions.hypoelastic, fail);
+    cfg.nsync_mh = dissipation.nsync_mh;
     cfg.surface = pd::parse_surface_correction(surface);
     if (hourglass < 0) fail("option --hourglass must be >= 0, got " + pd::io::format_shortest(hourglass));
     cfg.measure = dim == 2 ? thickness : dim == 1 ? area : 1.0;

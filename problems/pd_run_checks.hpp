@@ -37,6 +37,19 @@ inline pd::Elastic elastic_constants(const pd::io::Options& opt, int dim, pd::Pl
     return pd::Elastic::from_E_nu(E, nu);
 }
 
+// The options that depend on the dimension or the model: fail() names the first that does not apply.
+inline void check_model_options(const pd::io::Options& opt, int dim, const std::string& model, const std::string& surface, const std::string& pv)
+{
+    if (opt.given("plane") && dim != 2) fail("option --plane applies to --dim 2 only");
+    if (opt.given("thickness") && dim != 2) fail("option --thickness applies to --dim 2 only");
+    if (opt.given("area") && dim != 1) fail("option --area applies to --dim 1 only");
+    if (pv == "pa-pdlammps" && !opt.given("dx")) fail("option --partial-volume pa-pdlammps needs --dx (the lattice spacing)");
+    if (model == "pals" && dim != 3) fail("option --model pals needs --dim 3");
+    if (model == "correspondence" && dim == 1) fail("option --model correspondence needs --dim 2 or 3");
+    if (surface == "energy" && model == "pmb" && !opt.given("dx")) fail("option --surface-correction energy needs --dx (the lattice spacing)");
+    if (surface == "energy" && model != "pmb" && model != "lps") fail("option --surface-correction energy applies to --model pmb or lps only");
+}
+
 // The point cloud against the physics of the run: temperature columns need --heat, motion columns
 // need the mechanics, and the initial temperature comes from the T0 column or --T0 (not both).
 inline void check_cloud(const pd::io::PointCloud& pc, const pd::io::Options& opt, bool mechanics, bool heat)

@@ -3,7 +3,8 @@
 // with mechanics, the scene's heat component) with pd_run's guard and heat.csv.
 //   rho cv dT_i/dt = Q_i(T) + s on free nodes, T_i = T_fixed_i on held nodes (pd/heat/conduction.hpp),
 //   Q from Agwai's bond-based model or the correspondence heat model (pd/heat/agwai.hpp,
-//   correspondence_heat.hpp), s = --heat-source; no convection, no heat from the mechanics (yet).
+//   correspondence_heat.hpp), s = --heat-source; no convection. The heat dissipated by plasticity or
+//   viscosity (pd_run_dissipation.hpp) is added to T every --nsync-mh mechanical steps (pd/scene.hpp).
 // Thermal expansion (--alpha, --T-ref): with mechanics, PMB, LPS (with SCF) and correspondence (linear
 // law: the thermal strain; flanagan-taylor: its increment in each update) take the strain
 // alpha (T - T_ref) of the run's temperatures (pd/models/thermal_expansion.hpp, correspondence.hpp), and
@@ -15,7 +16,8 @@
 // Clock: --dt-thermal, or --nsync-mk N: one thermal step of N mechanical steps (spec/000a 3.3.4).
 // --heat-source s: a uniform volumetric source on the free points [W/m^3] (explicit, implicit Euler).
 // Heat guard: with no sources the exact temperatures stay in the range of the initial and held
-// values (maximum principle; with --heat-source s the range moves by s t/(rho cv)); a temperature
+// values (maximum principle; with --heat-source s the range moves by s t/(rho cv), and its ceiling by
+// the largest heat released at a point by each release of dissipated heat); a temperature
 // outside that range widened by 10 x its width, or a non-finite one, throws pd::Unstable naming the
 // thermal step and the node.
 // Writes heat.csv: thermal_step,t_s,heat_J (sum rho cv V T),T_min,T_max.
@@ -178,6 +180,9 @@ public:
     }
 
     pd::TemperatureField& field() { return *field_; }
+    // Heat released by the mechanics (a dissipative model) raises no point by more than dT [K] above
+    // what conduction allows: the guard's ceiling moves up by dT.
+    void allow_rise(double dT) { rise_ += dT * (1 + 1e-9); }
     const std::vector<double>& T() const { return field_->theta; }
     long last_step = 0;  // the run's last thermal step: its heat.csv row is written whatever the cadence
 
@@ -187,7 +192,7 @@ public:
     void log_state(pd::StateArchive& ar)
     {
         std::vector<double> rows = ar.saving() ? rows_ : std::vector<double>{};
-        ar("heat.rows", rows);
+        ar("heat.rows", rows), ar("heat.guard_rise", rise_);
         if (ar.saving()) return;
         open_log();
         for (std::size_t q = 0; q + 5 <= rows.size(); q += 5)
@@ -198,6 +203,7 @@ private:
     std::unique_ptr<pd::TemperatureField> field_;
     pd::HeatIntegrator integrator_ = pd::HeatIntegrator::explicit_euler;
     double rho_cv_ = 0, source_ = 0, crit_ = 0, lo_ = 0, hi_ = 0;  // crit_: thermal critical step at the start [s]
+    double rise_ = 0;  // the ceiling's rise by released dissipation (allow_rise) [K]
     long every_ = 1;
     std::vector<double> volume_;
     std::filesystem::path log_path_;
@@ -216,7 +222,7 @@ private:
     void guard_and_log(const pd::TemperatureField& f)
     {
         const double shift = source_ * f.t() / rho_cv_ * (1 + 1e-9);  // a uniform source moves the band by s t/(rho cv)
-        const double lo = lo_ + std::min(shift, 0.0), hi = hi_ + std::max(shift, 0.0);
+        const double lo = lo_ + std::min(shift, 0.0), hi = hi_ + std::max(shift, 0.0) + rise_;
         for (std::size_t i = 0; i < f.theta.size(); ++i)
             if (!std::isfinite(f.theta[i]) || f.theta[i] < lo || f.theta[i] > hi)
                 throw pd::Unstable("heat run unstable at thermal step " + std::to_string(f.step) + ", node " + std::to_string(i) +

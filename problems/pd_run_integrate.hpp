@@ -9,6 +9,7 @@
 #include "pd/core/timer.hpp"
 #include "pd/damage/critical_stretch.hpp"
 #include "pd/core/material.hpp"
+#include "pd/models/dissipative_registry.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_checkpoint.hpp"
@@ -42,6 +43,8 @@ struct Run {
     double dt = 0;                                     // [s]; NaN = automatic
     long steps = 0, energy_every = 1, vtu_every = 0;
     double s0 = 0;                                     // critical stretch [-]; 0 = no bond breaking
+    pd::Dissipation dissipation;                       // plasticity or a standard linear solid (pd_run_dissipation.hpp)
+    long nsync_mh = 1;                                 // mechanical steps between releases of the dissipated heat
     std::vector<long> output_steps;                    // sorted, unique
     std::filesystem::path out;
     bool mechanics = true;                             // false: heat only
@@ -169,6 +172,8 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
               HeatRun* heat)
 {
     attach_thermal_expansion(model, cfg.heat, heat, cfg.model, fail);
+    if constexpr (requires { model.pts.set_temperature_field(nullptr); })  // Johnson-Cook softening reads the run's temperatures
+        if (heat) model.pts.set_temperature_field(&heat->T());
     pd::Explicit<D, Model> sim(body, bonds, model, cfg.rho);
     pd::NodeSet held;  // fixed points with zero initial displacement; the others hold their own u0
     for (std::size_t i = 0; i < pc.size(); ++i) {
@@ -194,35 +199,51 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     sim.scene.rate_pairing = {.end_of_step = cfg.conventions.end_of_step,
                               .initial_velocity_step = cfg.conventions.initial_velocity ? cfg.dt : 0.0};
     if (heat) {
-        sim.scene.set_heat(heat->field());
+        sim.scene.set_heat(heat->field(), cfg.nsync_mh);
         heat->last_step = heat->field().due(cfg.steps, cfg.dt);
     }
 
-    pd::io::CsvWriter energy(cfg.out / "energy.csv", {"step", "t_s", "kinetic_J", "strain_J", "external_work_J", "total_J"});
-    std::vector<double> energy_rows;  // the rows of energy.csv, for the checkpoint (6 per row)
+    // energy.csv; a dissipative model adds the heat its dissipation generated since step 0, released or not.
+    std::vector<std::string> columns{"step", "t_s", "kinetic_J", "strain_J", "external_work_J", "total_J"};
+    constexpr bool dissipative = pd::DissipativeModel<Model>;
+    if (dissipative) columns.push_back("dissipated_heat_J");
+    const std::size_t width = columns.size();
+    pd::io::CsvWriter energy(cfg.out / "energy.csv", columns);
+    std::vector<double> energy_rows;  // the rows of energy.csv, for the checkpoint (width per row)
     auto energy_row = [&](const std::vector<double>& r) {
-        energy.row({static_cast<long>(r[0]), r[1], r[2], r[3], r[4], r[5]});
+        std::vector<pd::io::CsvCell> cells{static_cast<long>(r[0])};
+        cells.insert(cells.end(), r.begin() + 1, r.end());
+        energy.row(cells);
         energy_rows.insert(energy_rows.end(), r.begin(), r.end());
+    };
+    double dissipated = 0;  // [J]
+    auto add_step_heat = [&] {  // after each committed step (pd/scene.hpp: what e_abs accumulates)
+        if constexpr (dissipative)
+            for (std::size_t i = 0; i < body.size(); ++i) dissipated += model.step_heat(i) * body.volume[i];
     };
     VtuSeries vtu(cfg);
     auto state = [&](pd::StateArchive& ar) {  // the run's part of a checkpoint
         sim.state(ar);
         std::vector<double> rows = ar.saving() ? energy_rows : std::vector<double>{};
-        ar("pd_run.energy_rows", rows);
+        ar("pd_run.energy_rows", rows), ar("pd_run.dissipated_heat", dissipated);
         if (!ar.saving())
-            for (std::size_t q = 0; q + 6 <= rows.size(); q += 6)
-                if (on_cadence(step_number(rows[q]), cfg.energy_every, cfg.steps)) energy_row({rows.begin() + q, rows.begin() + q + 6});
+            for (std::size_t q = 0; q + width <= rows.size(); q += width)
+                if (on_cadence(step_number(rows[q]), cfg.energy_every, cfg.steps)) energy_row({rows.begin() + q, rows.begin() + q + width});
         vtu.state(ar);
         if (heat) heat->log_state(ar);  // the field itself is the scene's
     };
     pd::Energies last;
     if (cfg.checkpoints.restart) state(*cfg.checkpoints.restart), last = sim.energies();
-    else sim.start();
+    else sim.start(), add_step_heat();
     auto output = [&](long n) {  // energy rows every k steps and at the end; states on request
         const bool e_step = n % cfg.energy_every == 0 || n == cfg.steps, s_step = listed(cfg, n), v_step = vtu_step(cfg, n);
         if (!(e_step || s_step || v_step)) return;
         last = sim.check_energy();  // throws pd::Unstable before a blown-up state is written
-        if (e_step) energy_row({double(n), sim.t, last.kinetic, last.strain, last.external_work, last.total()});
+        if (e_step) {
+            std::vector<double> r{double(n), sim.t, last.kinetic, last.strain, last.external_work, last.total()};
+            if (dissipative) r.push_back(dissipated);
+            energy_row(r);
+        }
         if (!(s_step || v_step)) return;
         pd::io::StateFields<D> f{.u = &sim.u, .v = &sim.v};
         std::vector<double> phi;  // point damage [-]
@@ -231,10 +252,19 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
             f.damage = &phi;
         }
         if (heat) f.T = &heat->T(), f.Q = &heat->field().heat_flow();
+        if constexpr (requires { model.pts.ep; }) f.ep = &model.pts.ep;
         if (s_step) pd::io::write_state<D>(cfg.out, n, pc, f);
         if (v_step) vtu.write<D>(n, sim.t, pc, f);
     };
-    auto step = [&](long) { sim.step(cfg.dt); };
+    auto step = [&](long n) {
+        if constexpr (pd::DissipativeModel<Model>)  // the heat released in step n raises the heat guard's ceiling
+            if (heat && cfg.nsync_mh > 0 && n % cfg.nsync_mh == 0) {
+                const std::vector<double>& e = sim.scene.accumulated_heat();
+                heat->allow_rise(*std::max_element(e.begin(), e.end()) / cfg.heat.rho_cv);
+            }
+        sim.step(cfg.dt);
+        add_step_heat();
+    };
     pd::io::Timer timer;
     const int status = step_loop(cfg.checkpoints, cfg.steps, step, output, state);
     if (status != 0) return status;

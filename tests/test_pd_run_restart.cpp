@@ -1,6 +1,7 @@
 // pd_run checkpoints (problems/pd_run_checkpoint.hpp): a run stopped at a checkpoint and continued by
 // --restart writes the same files, byte for byte, as the uninterrupted run (an explicit run with
-// bond breaking, heat runs by explicit and implicit Euler); SIGTERM stops a run after its step with
+// bond breaking, heat runs by explicit and implicit Euler, plastic and viscous runs heating the
+// points); SIGTERM stops a run after its step with
 // a checkpoint and complete CSV files; a checkpoint of another run, a cut one, or one with CVODE is
 // refused with exit 2 and one line.
 #include "pd_run_harness.hpp"
@@ -76,6 +77,21 @@ TEST(PdRunRestart, HeatRunsContinueBitForBit)
     // Mechanics with bond breaking and the heat on the mechanical clock.
     expect_restart_identical("both", "--input " + p.string() + heat + steel + " --s0 1e-3 --dt 2e-8 --dt-thermal 1e-7 --energy-every 5", "--steps",
                              40, 23, 23, {"energy.csv", "heat.csv", "state_step0040.csv"});
+}
+
+TEST(PdRunRestart, DissipativeRunsContinueBitForBit)
+{
+    // The plastic and viscous histories, the heat not yet released (N_sync(MH) = 4: the checkpoint at
+    // step 23 falls between releases), the heat guard's ceiling and the dissipated_heat_J column.
+    const auto p = pulled_block(true, true);
+    const std::string scene = " --heat agwai --k 50 --cv 500 --delta 3e-3" + steel + " --dt 2e-8 --nsync-mk 1 --energy-every 5";
+    const std::pair<std::string, std::string> runs[] = {
+        {"plastic_lps", "lps --plasticity johnson-cook --jc-A 1e8"},
+        {"plastic_corr", "correspondence --plasticity johnson-cook --jc-A 1e8 --jc-m 1 --jc-T-ref 20 --jc-T-melt 1400"},
+        {"viscous_corr", "correspondence --stress-law flanagan-taylor --viscoelastic sls --sls-tau 1e-7"}};
+    for (const auto& [tag, model] : runs)
+        expect_restart_identical("dissipative_" + tag, "--input " + p.string() + scene + " --nsync-mh 4 --model " + model, "--steps", 40, 23, 23,
+                                 {"energy.csv", "heat.csv", "state_step0040.csv"});
 }
 
 TEST(PdRunRestart, SigtermStopsWithACheckpointAndCompleteFiles)

@@ -23,9 +23,7 @@
 #include "pd/io/guarded_main.hpp"
 #include "pd/core/timer.hpp"
 #include "problems/common/measure/bar_sections.hpp"
-#include "pd/models/plastic_correspondence.hpp"
-#include "pd/models/plastic_lps.hpp"
-#include "pd/models/plastic_pals.hpp"
+#include "pd/models/dissipative_registry.hpp"
 #include "pd/time/dynamic_relaxation.hpp"
 #include "reference/j2_plasticity.hpp"
 
@@ -179,21 +177,13 @@ static int run_case(int argc, char** argv)
     std::printf("\n%-15s %6s %9s %12s %12s %12s %10s %12s %8s %8s %7s %8s\n", "model", "steps", "ep_c", "sigma_eq_Pa", "sigma_ref_Pa",
                 "E_init_Pa", "yield_Pa", "sigma_eng_Pa", "yc_step", "yk_step", "ep_k/c", "wall_s");
     for (const std::string& name : models) {
-        Outcome o;
-        if (name == "correspondence") {
-            pd::PlasticCorrespondence model({.material = mat, .C_hg = C_hg}, s.bar.body, bonds, jc);
-            model.pts.plastic = plastic;
-            o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
-        } else if (name == "lps" || name == "lps-scf") {
-            pd::PlasticLPS model({.material = mat, .dim = 3}, bonds, jc);
-            if (name == "lps-scf") model.lps.apply_shear_correction(s.bar.body.x);  // Peridigm's SCF (models/scf.hpp)
-            model.pts.plastic = plastic;
-            o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
-        } else {
-            pd::PlasticPALS model({.material = mat}, s.bar.body, bonds, jc);
-            model.pts.plastic = plastic;
-            o = load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
-        }
+        const pd::ModelChoice choice{.name = name, .material = mat, .C_hg = C_hg};  // C_hg: correspondence only
+        const pd::Dissipation plasticity{.kind = pd::Dissipation::Kind::plastic, .law = jc};
+        const Outcome o = pd::with_dissipative_model<pd::PlasticLPS, pd::PlasticPALS, pd::PlasticCorrespondence>(
+            choice, plasticity, s.bar.body, bonds, [&](auto& model) {
+                model.pts.plastic = plastic;
+                return load(model, s, bonds, strain, steps, tol, max_iter, jc, out, name);
+            });
         // 6. Compare, print, summary rows.
         const double ref = pd::ref::uniaxial_j2_stress(E, {.A = A, .B = B, .n = n_hard}, o.eps_g);  // classical bar at the gauge strain [Pa]
         std::printf("%-15s %6d %9.3e %12.5e %12.5e %12.5e %10.4e %12.5e %8d %8d %7.4f %8.1f\n", name.c_str(), o.steps_done, o.ep, o.sigma_eq,

@@ -1,5 +1,5 @@
 // pd/io/state_output.hpp -- the per-step outputs of a point-cloud run (problems/pd_run.cpp):
-// `state_step<NNNN>.csv` (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,damage][,T,Q_W_m3]; reference x,y,z as read, u and
+// `state_step<NNNN>.csv` (node_id,x,y,z[,ux,uy,uz,vx,vy,vz][,damage][,ep][,T,Q_W_m3]; reference x,y,z as read, u and
 // v zero beyond the dimension, 17 significant digits) and `state_step<NNNN>.vtu` with a .pvd series, plus
 // the parser of the step list "0,100,400".
 #pragma once
@@ -59,6 +59,7 @@ struct StateFields {
     const std::vector<double>* T = nullptr;  // temperature [K or C, the unit of the input]
     const std::vector<double>* Q = nullptr;  // heat-flow density into the node [W/m^3]
     const std::vector<double>* damage = nullptr;  // point damage phi (critical_stretch.hpp) [-]; with u only
+    const std::vector<double>* ep = nullptr;      // equivalent plastic strain (models/plastic_points.hpp) [-]; with u only
 };
 
 template <int D>
@@ -67,6 +68,7 @@ void write_state(const std::filesystem::path& out, long n, const PointCloud& pc,
     std::vector<std::string> header{"node_id", "x", "y", "z"};
     if (s.u) header.insert(header.end(), {"ux", "uy", "uz", "vx", "vy", "vz"});
     if (s.u && s.damage) header.push_back("damage");
+    if (s.u && s.ep) header.push_back("ep");
     if (s.T) header.insert(header.end(), {"T", "Q_W_m3"});
     CsvWriter csv(step_file(out, n, "csv"), header, false);
     for (std::size_t i = 0; i < pc.size(); ++i) {
@@ -75,6 +77,7 @@ void write_state(const std::filesystem::path& out, long n, const PointCloud& pc,
             for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? s.u->c[d][i] : 0.0);
             for (int d = 0; d < 3; ++d) row.emplace_back(d < D ? s.v->c[d][i] : 0.0);
             if (s.damage) row.emplace_back((*s.damage)[i]);
+            if (s.ep) row.emplace_back((*s.ep)[i]);
         }
         if (s.T) {
             row.emplace_back((*s.T)[i]);
@@ -97,6 +100,7 @@ void write_state_vtu(const std::filesystem::path& out, long n, double t, const P
         w.vector("displacement_m", comp(*s.u, 0), comp(*s.u, 1), comp(*s.u, 2));
         w.vector("velocity_m_per_s", comp(*s.v, 0), comp(*s.v, 1), comp(*s.v, 2));
         if (s.damage) w.scalar("damage", *s.damage);
+        if (s.ep) w.scalar("plastic_strain", *s.ep);
     }
     if (s.T) {
         w.scalar("T", *s.T);

@@ -51,6 +51,9 @@ struct PlasticLPS {
     }
 
     void recompute(const Bonds& b) { lps.recompute(b); }  // after bonds broke (header)
+    // Thermal expansion of the wrapped LPS (header; its refusals are LPS's).
+    void set_thermal_expansion(const ThermalExpansion& t) { lps.set_thermal_expansion(t); }
+    const ThermalExpansion& thermal_expansion() const { return lps.thermal_expansion(); }
     double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
     void commit()
     {

@@ -53,6 +53,15 @@ struct PlasticPALS {
     }
 
     void recompute(const Bonds& b) { pals.recompute(b); }  // after bonds broke (header)
+    // Thermal expansion of the wrapped PALS (header): the owner rule only, so bond_mean is refused here
+    // as well as by point_pass (a PALS set directly).
+    void set_thermal_expansion(const ThermalExpansion& t)
+    {
+        if (t.active() && t.bond_mean)
+            throw std::invalid_argument("PlasticPALS: the bond-mean thermal strain is not written for its deviatoric extension (owner rule only)");
+        pals.set_thermal_expansion(t);
+    }
+    const ThermalExpansion& thermal_expansion() const { return pals.thermal_expansion(); }
     double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
     void commit()
     {

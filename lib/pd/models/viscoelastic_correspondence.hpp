@@ -108,6 +108,9 @@ public:
         ar.blocks("viscoelastic.q_c", q_c_), ar.blocks("viscoelastic.s_hat_c", s_hat_c_);
     }
     void rebuild(const Bonds& b, const Field<3>& y) { model.point_pass(b, y); }
+    // Thermal expansion of the wrapped model (header; its refusals are Correspondence's).
+    void set_thermal_expansion(const ThermalExpansion& t) { model.set_thermal_expansion(t); }
+    const ThermalExpansion& thermal_expansion() const { return model.thermal_expansion(); }
 
     template <class Pass>
     void with_kernel(Pass&& pass, const Bonds& b) const { model.with_kernel(pass, b); }

@@ -89,6 +89,9 @@ struct ViscoelasticLPS {
     }
 
     void recompute(const Bonds& b) { lps.recompute(b); }
+    // Thermal expansion of the wrapped LPS (header; its refusals are LPS's).
+    void set_thermal_expansion(const ThermalExpansion& t) { lps.set_thermal_expansion(t); }
+    const ThermalExpansion& thermal_expansion() const { return lps.thermal_expansion(); }
 
     // theta_i by LPS, then e_d^{n+1}, the trial e_db^{n+1} (7.27), tv and D_i of every bond.
     template <int D>
