@@ -124,8 +124,10 @@ TEST(RefinedGrid, InterfaceHorizonIsMTimesTheDistanceToTheNearestCoarserNode)  /
     const int i = nearest(g, {{11.75 * h0, 6.25 * h0}});
     ASSERT_EQ(g.level[i], 1);
     EXPECT_NEAR(g.delta[i], m * std::sqrt(10.0) / 4 * h0, 1e-15);
-    const int far = nearest(g, {{2.25 * h0, 6.25 * h0}});  // no coarse node in its horizon: unchanged
-    EXPECT_EQ(g.delta[far], m * h0 / 2);
+    for (const double x : {2.25 * h0, 11.25 * h0}) {  // far from the interface; on the far side of an interface cell
+        const int far = nearest(g, {{x, 6.25 * h0}});    // (nearest coarse node sqrt(26)/4 dx0 = 2.55 h away): unchanged
+        EXPECT_EQ(g.delta[far], m * h0 / 2) << x;
+    }
 }
 
 TEST(VariableHorizon, DualHorizonForcesSumToZeroAndSourceHorizonForcesDoNot)
@@ -146,13 +148,14 @@ TEST(VariableHorizon, DualHorizonForcesSumToZeroAndSourceHorizonForcesDoNot)
 
 TEST(VariableHorizon, OneHorizonGivesTheUniformFamilyAndItsForces)
 {
-    const pd::RefinedGrid<2> g = plate();
     const pd::Body<2> lattice = pd::box<2>({{0, 0}}, {{24 * h0, 12 * h0}}, h0, 0.01);
     const pd::PMB::Params p{.material = pd::Elastic::from_E_nu(200e9, 1.0 / 3), .dim = 2, .measure = 0.01};
+    for (const double ratio : {m, 3.0})  // 3: partners at exactly delta, kept by the round-off rule of build_bonds
     for (const pd::PartialVolume pv : {pd::PartialVolume::pa_pdlammps, pd::PartialVolume::exact_area}) {
+        const pd::RefinedGrid<2> g(lattice, ratio * h0);
         pd::BondOptions options;
         options.partial_volume = pv;
-        const pd::Bonds standard = pd::build_bonds(lattice, m * h0, options);
+        const pd::Bonds standard = pd::build_bonds(lattice, ratio * h0, options);
         const auto dual = pd::build_variable_horizon_bonds(g.body(), g.active_delta(), g.active_h(), pd::HorizonCoupling::dual, pv);
         ASSERT_EQ(dual.bonds.partner, standard.partner);
         pd::PMB a(p, standard), b(p, dual.bonds);

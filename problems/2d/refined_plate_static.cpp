@@ -126,12 +126,11 @@ static int run_case(int argc, char** argv)
     pd::io::Case run("refined_plate_static_2d", "Plate in tension on a half-refined grid: variable and dual horizons (spec/002 V1).",
                      "reports/2d/refined_plate_static");
     pd::io::Options& opt = run.opt;
-    Plate P{};
-    P.E = opt.add("E", 200e9, "Young's modulus (PMB plane stress: nu = 1/3)", "Pa");
-    P.p = opt.add("p", 200e6, "end traction", "Pa");
-    P.Lx = opt.add("length", 1.0, "plate length (x)", "m");
-    P.Ly = opt.add("width", 0.5, "plate width (y)", "m");
-    P.t = opt.add("thickness", 0.01, "plate thickness", "m");
+    const double& E = opt.add("E", 200e9, "Young's modulus (PMB plane stress: nu = 1/3)", "Pa");
+    const double& p = opt.add("p", 200e6, "end traction", "Pa");
+    const double& Lx = opt.add("length", 1.0, "plate length (x)", "m");
+    const double& Ly = opt.add("width", 0.5, "plate width (y)", "m");
+    const double& t = opt.add("thickness", 0.01, "plate thickness", "m");
     double& dx0 = opt.add("dx0", 0.01, "initial grid spacing (quick: 0.025)", "m");
     double& m = opt.add("m", 3.015, "delta0 / dx0");
     std::string& models = opt.add_string("models", "A,B,C,D,E,F", "refinement layouts (A-C: left half 1-3 levels; D-F: upper half; quick: A,D)");
@@ -142,7 +141,7 @@ static int run_case(int argc, char** argv)
     for (char c : models)
         if (c != ',' && (c < 'A' || c > 'F')) opt.fail("option --models: layouts are A-F, comma-separated, got '" + models + "'");
     run.start();
-    P.dx0 = dx0, P.delta0 = m * dx0;
+    const Plate P{.Lx = Lx, .Ly = Ly, .t = t, .dx0 = dx0, .delta0 = m * dx0, .E = E, .p = p};
     const double strain = P.p / P.E, nu = 1.0 / 3;  // analytic u_x = strain x, u_y = -nu strain y
     const double nan = std::nan("");
 

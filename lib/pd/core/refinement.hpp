@@ -8,9 +8,13 @@
 //   visibility_zone(nodes): the nodes to split so that no coarser node sees the given ones (sec. 4.5,
 //     Alg. A.3): the given active nodes and every active node of the same level within their horizon.
 //   ancestor(node): the level-0 node it descends from (the triggers work on level-0 ids, V6f).
-//   interface_horizon(m): a refined node with a coarser active node inside its horizon takes
-//     delta = m d_min, d_min its distance to the nearest coarser node (sec. 4.6, the fix of the lost
-//     partial cells with PA-PDLAMMPS; V6e: 3 sqrt(2) h at d_min = sqrt(2) h).
+//   interface_horizon(m): the interface nodes of the refined region take delta = m d_min, d_min the
+//     distance to the nearest coarser node (sec. 4.6, the fix of the partial cells PA-PDLAMMPS drops;
+//     V6e: 3 sqrt(2) h at d_min = sqrt(2) h). Interface nodes: the first row of refined nodes, those
+//     with a coarser node nearer than 2 h (Method A's at h or sqrt(2) h; Method B's sub-cells on the
+//     near side of a parent cell at the interface at sqrt(10)/2 h; those on its far side, at
+//     sqrt(26)/2 h, are not). So m d_min stays between the source's 3 h and 4.24 h (Method A) or is
+//     3 sqrt(10)/2 h = 4.74 h (Method B, m = 3).
 //   body(): the active nodes as a Body (ids(): their node numbers), with h and delta per active node.
 // Node numbers never change: children are appended.
 #pragma once
@@ -102,7 +106,7 @@ struct RefinedGrid {
             double d_min = std::numeric_limits<double>::infinity();
             for (std::size_t j = 0; j < size(); ++j)
                 if (active[j] && level[j] < level[i]) d_min = std::min(d_min, norm(x[j] - x[i]));
-            if (d_min <= delta[i]) delta[i] = m * d_min, ++changed;
+            if (d_min < 2 * h[i]) delta[i] = m * d_min, ++changed;
         }
         return changed;
     }

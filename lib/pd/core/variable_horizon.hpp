@@ -44,14 +44,15 @@ namespace detail {
 template <int D>
 inline double cell_share(const Vec<D>& e, double r, double delta, double h, PartialVolume pv)
 {
-    if (pv == PartialVolume::pa_pdlammps) return r > delta ? 0.0 : std::min(1.0, (delta + h / 2 - r) / h);
+    const bool inside = r <= delta * (1 + horizon_roundoff);  // build_bonds' rule: a lattice partner at delta stays
+    if (pv == PartialVolume::pa_pdlammps) return inside ? std::min(1.0, (delta + h / 2 - r) / h) : 0.0;
     if constexpr (D == 2)
         if (pv == PartialVolume::exact_area) {
             if (r <= delta - h * std::sqrt(0.5)) return 1.0;  // the whole cell is inside
             const double a = cell_fraction_in_horizon(Vec<2>{{std::abs(e[0]), std::abs(e[1])}}, delta, h);
             return a > 1e-12 ? a : 0.0;  // inside by round-off only
         }
-    return r <= delta * (1 + horizon_roundoff) ? 1.0 : 0.0;
+    return inside ? 1.0 : 0.0;
 }
 }  // namespace detail
 

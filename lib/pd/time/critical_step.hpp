@@ -38,6 +38,21 @@ inline CriticalStep critical_step_silling_askari(const Bonds& b, double rho, dou
     return critical_step_silling_askari(b, std::vector<double>(b.nodes(), rho), c);
 }
 
+// The same with a spring constant per bond, spring[k] = c_k omega V_j / |xi| [N/m^4 in 3D] (e.g.
+// PMB::coef after scale_bonds: a surface correction or the micromoduli of variable horizons).
+inline CriticalStep critical_step_silling_askari(const Bonds& b, double rho, const std::vector<double>& spring)
+{
+    CriticalStep r{std::numeric_limits<double>::infinity(), -1};
+    for (std::size_t i = 0; i < b.nodes(); ++i) {
+        double stiffness = 0;  // [N/m^4]
+        for_family(b, i, [&](std::int64_t k, int) { stiffness += spring[k]; });
+        if (stiffness <= 0) continue;
+        const double dt = std::sqrt(2 * rho / stiffness);
+        if (dt < r.dt) r = {dt, static_cast<int>(i)};
+    }
+    return r;
+}
+
 inline double critical_step_cfl(double h, double wave_speed) { return h / wave_speed; }
 
 }  // namespace pd
