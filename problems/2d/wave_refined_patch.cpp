@@ -23,14 +23,9 @@
 // Run: wave_refined_patch_2d [--models A,B,C] [--t-end 0.08] [--quick] [--out DIR]
 // Writes: runs.csv, profile.csv (W on the node row just above y = 0.02 m at t = 0.0582 s, over the uniform
 // run's maximum), summary.csv.
-#include "pd/core/refinement.hpp"
-#include "pd/core/timer.hpp"
-#include "pd/core/variable_horizon.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
-#include "pd/models/pmb.hpp"
-#include "pd/time/critical_step.hpp"
-#include "pd/time/verlet.hpp"
+#include "problems/common/refined_wave.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,15 +33,13 @@
 #include <string>
 
 namespace {
-struct Wave {
-    double Lx = 0.1, Ly = 0.04, dx0 = 5e-4, m = 3, a = 0.2e-6, width = 0.01;  // [m]
-    double x0 = 0.055, x1 = 0.075, y0 = 0.01, y1 = 0.03;                          // patch [m]
-    double E = 1, rho = 1, t_end = 0.08, t_profile = 0.0582;                     // [Pa], [kg/m^3], [s], [s]
-    double probe_x = 0.034, probe_y = 0.02;                                      // reflection probe [m]
+struct Patch {
+    double Lx = 0.1, Ly = 0.04, dx0 = 5e-4, m = 3;                // plate and coarse grid [m], delta0 / dx0
+    double x0 = 0.055, x1 = 0.075, y0 = 0.01, y1 = 0.03;          // patch [m]
 };
 
 // 2. The grid of a model ('U': uniform; 'A', 'B', 'C': Table 4.2).
-pd::RefinedGrid<2> grid(const Wave& w, char model)
+pd::RefinedGrid<2> grid(const Patch& w, char model)
 {
     const pd::Body<2> cells = pd::box<2>({{0, 0}}, {{w.Lx, w.Ly}}, w.dx0);
     pd::RefinedGrid<2> g(cells, w.m * w.dx0);
@@ -57,65 +50,6 @@ pd::RefinedGrid<2> grid(const Wave& w, char model)
     g.split(patch, model == 'A' ? pd::Refinement::m : pd::Refinement::delta);
     if (model == 'C') g.interface_horizon(w.m);
     return g;
-}
-
-struct History {
-    std::vector<double> W_max, K_max;  // largest potential / kinetic energy density per node over the run [J/m^3]
-    std::vector<double> E_tot, u_probe;  // total energy [J] and probe u_x [m] per step
-    std::vector<double> profile;         // W at t_profile per node [J/m^3]
-    pd::Body<2> body;
-    double wall = 0;
-};
-
-// 3. Families and PMB with the horizon factors (PA-PDLAMMPS volumes).
-struct Scene {
-    pd::Body<2> body;
-    pd::HorizonFamilies f;
-    pd::PMB model;
-    Scene(const Wave& w, const pd::RefinedGrid<2>& g, pd::HorizonCoupling coupling)
-        : body(g.body()), f(pd::build_variable_horizon_bonds(body, g.active_delta(), g.active_h(), coupling, pd::PartialVolume::pa_pdlammps))
-    {
-        const pd::PMB::Params p{.material = pd::Elastic::from_E_nu(w.E, 1.0 / 3), .dim = 2, .plane = pd::Plane::stress};
-        model = pd::PMB(p, f.bonds);
-        model.scale_bonds(pd::horizon_factors(f, [&](double delta) { return pd::PMB::micromodulus(p, pd::Influence{}, delta); }));
-    }
-    double critical_step(double rho) const { return pd::critical_step_silling_askari(f.bonds, rho, model.coef).dt; }
-};
-
-// 4.-5. The Gaussian, then velocity Verlet with step dt [s], sampling the energies every step.
-History run_wave(const Wave& w, const pd::RefinedGrid<2>& g, pd::HorizonCoupling coupling, double dt)
-{
-    pd::io::Timer timer;
-    Scene sc(w, g, coupling);
-    History h;
-    h.body = sc.body;
-    const std::size_t n = h.body.size();
-    pd::PMB& model = sc.model;
-    const pd::HorizonFamilies& f = sc.f;
-    pd::Explicit<2, pd::PMB> sim(h.body, sc.f.bonds, model, w.rho);
-    for (std::size_t i = 0; i < n; ++i) sim.u.c[0][i] = w.a * std::exp(-std::pow(h.body.x.c[0][i] / w.width, 2));
-    sim.start();
-    int probe = 0;
-    for (std::size_t i = 0; i < n; ++i)
-        if (std::hypot(h.body.x.c[0][i] - w.probe_x, h.body.x.c[1][i] - w.probe_y) <
-            std::hypot(h.body.x.c[0][probe] - w.probe_x, h.body.x.c[1][probe] - w.probe_y))
-            probe = static_cast<int>(i);
-    h.W_max.assign(n, 0.0), h.K_max.assign(n, 0.0);
-    const long steps = std::lround(std::ceil(w.t_end / dt)), at_profile = std::lround(w.t_profile / dt);
-    for (long s = 0; s <= steps; ++s) {
-        if (s > 0) sim.step(dt);
-        const std::vector<double> W = model.energy_density(f.bonds, sim.positions());
-        double E = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const double K = 0.5 * w.rho * (sim.v.c[0][i] * sim.v.c[0][i] + sim.v.c[1][i] * sim.v.c[1][i]);
-            h.W_max[i] = std::max(h.W_max[i], W[i]), h.K_max[i] = std::max(h.K_max[i], K);
-            E += (W[i] + K) * h.body.volume[i];
-        }
-        h.E_tot.push_back(E), h.u_probe.push_back(sim.u.c[0][probe]);
-        if (s == at_profile) h.profile = W;
-    }
-    h.wall = timer.seconds();
-    return h;
 }
 }  // namespace
 
@@ -135,8 +69,10 @@ static int run_case(int argc, char** argv)
     for (char c : models)
         if (c != ',' && (c < 'A' || c > 'C')) opt.fail("option --models: models are A, B, C, comma-separated, got '" + models + "'");
     run.start();
-    Wave w;
-    w.dx0 = dx0, w.t_end = t_end;
+    Patch w;
+    w.dx0 = dx0;
+    const pd::wave::Pulse pulse{.width = 0.01, .t_end = t_end, .t_profile = 0.0582, .probe = {{0.034, 0.02}}};
+    using pd::wave::WaveHistory, pd::wave::WaveScene;
     const double nan = std::nan("");
 
     // One step for every run: 0.5 x the smallest Silling-Askari step (eq. 3.14 with the bonds' own springs).
@@ -144,40 +80,32 @@ static int run_case(int argc, char** argv)
     for (char name : models)
         if (name != ',')
             for (const pd::HorizonCoupling coupling : {pd::HorizonCoupling::source, pd::HorizonCoupling::dual})
-                dt = std::min(dt, 0.5 * Scene(w, grid(w, name), coupling).critical_step(w.rho));
+                dt = std::min(dt, 0.5 * WaveScene(pulse, grid(w, name), coupling).critical_step(pulse.rho));
     const pd::RefinedGrid<2> uniform_grid = grid(w, 'U');
-    dt = std::min(dt, 0.5 * Scene(w, uniform_grid, pd::HorizonCoupling::dual).critical_step(w.rho));
-    const History ref = run_wave(w, uniform_grid, pd::HorizonCoupling::dual, dt);
+    dt = std::min(dt, 0.5 * WaveScene(pulse, uniform_grid, pd::HorizonCoupling::dual).critical_step(pulse.rho));
+    const WaveHistory ref = pd::wave::run_wave(pulse, uniform_grid, pd::HorizonCoupling::dual, dt);
     const double W_ref_max = *std::max_element(ref.W_max.begin(), ref.W_max.end());
-    double u_ref_max = 0;
-    for (double u : ref.u_probe) u_ref_max = std::max(u_ref_max, std::abs(u));
 
     pd::io::CsvWriter runs(run.file("runs.csv"), {"model", "coupling", "nodes", "dW_max", "dW_min", "dK_max", "dK_min", "dE_tot", "du_reflection",
                                                   "dt_s", "wall_s"});
     pd::io::CsvWriter profile(run.file("profile.csv"), {"model", "coupling", "x_m", "level", "W_over_uniform_max"}, false);
     for (std::size_t i = 0; i < ref.profile.size(); ++i)
-        if (const double above = ref.body.x.c[1][i] - w.probe_y; above >= 0 && above < w.dx0) profile.row({"U", "-", ref.body.x.c[0][i], 0, ref.profile[i] / W_ref_max});
+        if (const double above = ref.body.x.c[1][i] - pulse.probe[1]; above >= 0 && above < w.dx0) profile.row({"U", "-", ref.body.x.c[0][i], 0, ref.profile[i] / W_ref_max});
     std::printf("%5s %9s %8s %8s %8s %8s %8s %9s %9s %7s\n", "model", "coupling", "nodes", "dW_max", "dW_min", "dK_max", "dK_min", "dE_tot", "du", "wall_s");
     for (char name : models) {
         if (name == ',') continue;
         const pd::RefinedGrid<2> g = grid(w, name);
         const std::vector<int> ids = g.ids();
         for (const pd::HorizonCoupling coupling : {pd::HorizonCoupling::source, pd::HorizonCoupling::dual}) {
-            const History h = run_wave(w, g, coupling, dt);
-            // 6. Per patch node against its parent cell in the uniform run (node numbers of level 0 are the uniform run's).
-            double dW_max = -1e300, dW_min = 1e300, dK_max = -1e300, dK_min = 1e300, dE = 0, du = 0;
-            for (std::size_t q = 0; q < ids.size(); ++q) {
-                if (g.level[ids[q]] == 0) continue;
-                const int parent = g.ancestor(ids[q]);
-                const double dW = 1 - h.W_max[q] / ref.W_max[parent], dK = 1 - h.K_max[q] / ref.K_max[parent];
-                dW_max = std::max(dW_max, dW), dW_min = std::min(dW_min, dW), dK_max = std::max(dK_max, dK), dK_min = std::min(dK_min, dK);
-            }
-            for (std::size_t s = 0; s < ref.E_tot.size(); ++s)
-                dE = std::max(dE, std::abs(1 - h.E_tot[s] / ref.E_tot[s])), du = std::max(du, std::abs(h.u_probe[s] - ref.u_probe[s]) / u_ref_max);
+            const WaveHistory h = pd::wave::run_wave(pulse, g, coupling, dt);
+            // 6. Per patch node against its parent cell in the uniform run, the total energy, the reflection.
+            const pd::wave::PeakChange dWc = pd::wave::peak_change(g, h.W_max, ref.W_max), dKc = pd::wave::peak_change(g, h.K_max, ref.K_max);
+            const double dW_max = dWc.largest, dW_min = dWc.smallest, dK_max = dKc.largest, dK_min = dKc.smallest;
+            const double dE = pd::wave::energy_change(h, ref), du = pd::wave::reflection(h, ref);
             const char* cname = coupling == pd::HorizonCoupling::source ? "variable" : "dual";
             runs.row({std::string(1, name), cname, h.body.size(), dW_max, dW_min, dK_max, dK_min, dE, du, dt, h.wall});
             for (std::size_t q = 0; q < h.profile.size(); ++q)
-                if (const double above = h.body.x.c[1][q] - w.probe_y; above >= 0 && above < g.h[ids[q]])  // the row just above y = 0.02
+                if (const double above = h.body.x.c[1][q] - pulse.probe[1]; above >= 0 && above < g.h[ids[q]])  // the row just above y = 0.02
                     profile.row({std::string(1, name), cname, h.body.x.c[0][q], g.level[ids[q]], h.profile[q] / W_ref_max});
             std::printf("%5c %9s %8zu %8.4f %8.4f %8.4f %8.4f %9.2e %9.2e %7.2f\n", name, cname, h.body.size(), dW_max, dW_min, dK_max, dK_min, dE,
                         du, h.wall);
