@@ -1,8 +1,10 @@
-// Multi-level grids (core/refinement.hpp) and variable-horizon families (core/variable_horizon.hpp),
-// spec/002 V6 a, b, e, f and the ghost-force property of the dual horizon (sec. 2.6). References:
+// Multi-level grids (core/refinement.hpp), variable-horizon families (core/variable_horizon.hpp) and the
+// interpolation onto new nodes (core/mls.hpp): spec/002 V6 a, b, c, e, f and the ghost-force property
+// of the dual horizon (sec. 2.6). References:
 // geometry written out in the tests (sub-cell centres, volumes, distances), Newton's third law (a
 // dual-horizon body's internal forces sum to zero), and the standard PMB family on a uniform grid.
 #include "pd/bond_loop.hpp"
+#include "pd/core/mls.hpp"
 #include "pd/core/refinement.hpp"
 #include "pd/core/variable_horizon.hpp"
 #include "pd/models/pmb.hpp"
@@ -162,4 +164,38 @@ TEST(VariableHorizon, OneHorizonGivesTheUniformFamilyAndItsForces)
         b.scale_bonds(pd::horizon_factors(dual, [&](double delta) { return pd::PMB::micromodulus(p, pd::Influence{}, delta); }));
         for (std::size_t k = 0; k < a.coef.size(); ++k) EXPECT_NEAR(b.coef[k], a.coef[k], 1e-14 * a.coef[k]) << k;
     }
+}
+
+TEST(Interpolation, ChildrenGetAnyLinearFieldExactlyAndNothingFromAcrossACrack)  // V6c
+{
+    const pd::RefinedGrid<2> g0 = plate();
+    const pd::Bonds bonds = [&] {  // the families of the initial grid, with the bonds across x = 10 h0 broken
+        pd::Bonds b = pd::build_bonds(g0.body(), m * h0);
+        b.enable_damage();
+        for (std::size_t i = 0; i < g0.size(); ++i)
+            pd::for_family(b, i, [&](std::int64_t k, int j) { b.intact[k] = (g0.x.c[0][i] < 10 * h0) == (g0.x.c[0][j] < 10 * h0); });
+        return b;
+    }();
+    pd::Field<2> u(g0.size());  // u = a + B x, a written out
+    for (std::size_t i = 0; i < g0.size(); ++i)
+        u.c[0][i] = 1e-4 + 2e-3 * g0.x.c[0][i] - 5e-4 * g0.x.c[1][i], u.c[1][i] = -3e-5 + 7e-4 * g0.x.c[0][i] + 1e-3 * g0.x.c[1][i];
+    for (const pd::Vec<2> at : {pd::Vec<2>{{9.5 * h0, 5.5 * h0}}, pd::Vec<2>{{0.5 * h0, 0.5 * h0}}}) {  // next to the crack; a corner
+        pd::RefinedGrid<2> g = g0;
+        const int p = nearest(g, at);
+        g.split({p}, pd::Refinement::delta);
+        std::vector<int> support{p};
+        pd::for_intact_bonds(bonds, p, [&](std::int64_t, int j) { support.push_back(j); });
+        for (int c = 0; c < 4; ++c) {
+            const pd::Vec<2> z = g.x[g.first_child[p] + c];
+            const std::vector<double> phi = pd::mls_weights(g0.x, support, z, 1.01 * m * h0 + h0);
+            double ux = 0, uy = 0;
+            for (std::size_t q = 0; q < support.size(); ++q) ux += phi[q] * u.c[0][support[q]], uy += phi[q] * u.c[1][support[q]];
+            EXPECT_NEAR(ux, 1e-4 + 2e-3 * z[0] - 5e-4 * z[1], 1e-15) << c;  // round-off of O(1e-4) values
+            EXPECT_NEAR(uy, -3e-5 + 7e-4 * z[0] + 1e-3 * z[1], 1e-15) << c;
+            for (int j : support) EXPECT_LT(g0.x.c[0][j], 10 * h0);  // the support stays on the parent's side of the crack
+        }
+    }
+    // A support on one line cannot fit a plane: the nearest node's value alone.
+    const std::vector<double> phi = pd::mls_weights(g0.x, {0, 1, 2}, pd::Vec<2>{{1.2 * h0, 0.9 * h0}}, 4 * h0);
+    EXPECT_EQ(phi, (std::vector<double>{0, 1, 0}));
 }
