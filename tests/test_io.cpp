@@ -6,6 +6,7 @@
 #include "pd/io/convergence.hpp"
 #include "pd/io/csv.hpp"
 #include "pd/core/timer.hpp"
+#include "pd/io/refined_grid_vtu.hpp"
 #include "pd/io/vtu.hpp"
 
 #include <gtest/gtest.h>
@@ -131,6 +132,19 @@ TEST(IoVtu, WellFormedPointsAndArrays)
     EXPECT_EQ(open, 8u);  // TimeValue, 3 point arrays, Points, connectivity, offsets, types
     EXPECT_EQ(close, open);
     EXPECT_EQ(s.substr(s.size() - 11), "</VTKFile>\n");
+}
+
+TEST(IoVtu, RefinedGridShowsItsActiveNodesAndLevels)
+{
+    pd::RefinedGrid<2> g(pd::box<2>({{0, 0}}, {{3e-3, 2e-3}}, 1e-3), 3e-3);  // 3 x 2 cells
+    g.split({0}, pd::Refinement::delta);                                    // cell 0 -> 4 level-1 cells: 9 active nodes
+    const std::string path = temp_path("vtu/grid.vtu");
+    pd::io::write_refined_grid_vtu(path, g, {{"ux_m", std::vector<double>(9, 1.0)}});
+    EXPECT_THROW(pd::io::write_refined_grid_vtu(path, g, {{"ux_m", {1.0}}}), std::invalid_argument);
+    const std::string s = slurp(path);
+    EXPECT_NE(s.find("NumberOfPoints=\"9\""), std::string::npos);
+    for (const char* name : {"level", "cell_side_m", "horizon_m", "ux_m"}) EXPECT_NE(s.find(std::string("Name=\"") + name + "\""), std::string::npos) << name;
+    EXPECT_NE(s.find("\n          0.00025 0.00025 0\n"), std::string::npos);  // the first child, at the parent's centre - h/4
 }
 
 TEST(IoVtu, PvdIsValidAfterEachAdd)

@@ -20,12 +20,14 @@
 // relative errors; plateau = mean |error| over 0.1 <= |x| <= 0.4 m on each side; peak = largest
 // |error| at 0 < x <= 0.1 m.
 // Run: refined_plate_static_2d [--models A,B,C,D,E,F] [--dx0 0.01] [--quick] [--out DIR]
-// Writes: runs.csv (one row per model, coupling, correction), lines.csv (the profiles), summary.csv.
+// Writes: runs.csv (one row per model, coupling, correction), lines.csv (the profiles), summary.csv,
+// grid_<model>.vtu (the refined grid with its levels and the dual-horizon displacement, for ParaView).
 #include "pd/core/refinement.hpp"
 #include "pd/core/timer.hpp"
 #include "pd/core/variable_horizon.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/refined_grid_vtu.hpp"
 #include "pd/models/surface_correction.hpp"
 #include "pd/solve/linear_solver.hpp"
 #include "pd/solve/tangent.hpp"
@@ -180,7 +182,10 @@ static int run_case(int argc, char** argv)
                     if (window) (refined_side ? plat_r : plat_c) += std::abs(upper ? ey : ex), ++(refined_side ? n_r : n_c);
                     if (upper && refined_side) max_uy = std::max(max_uy, std::abs(ey));
                 }
-                if (coupling == pd::HorizonCoupling::dual && !corrected) ux_dual = ux_line;
+                if (coupling == pd::HorizonCoupling::dual && !corrected) {
+                    ux_dual = ux_line;
+                    pd::io::write_refined_grid_vtu(run.file(std::string("grid_") + name + ".vtu"), g, {{"ux_m", s.u.c[0]}, {"uy_m", s.u.c[1]}});
+                }
                 if (coupling == pd::HorizonCoupling::source && !corrected)
                     for (std::size_t q = 0; q < ux_line.size(); ++q) dh_vs_vh = std::max(dh_vs_vh, std::abs(ux_line[q] - ux_dual[q]) / scale);
                 plat_r /= std::max(n_r, 1), plat_c /= std::max(n_c, 1);

@@ -19,9 +19,11 @@
 // 5.23 / 5.88 %, du 0.24 / 0.31 / 0.35 %; delta-m: 17.10 / 18.96 / 20.81 %, 4.38 / 6.25 / 7.27 %,
 // 0.58 / 0.87 / 1.03 %; without the interface horizon the interface nodes lose 37.4 %.
 // Run: wave_multilevel_2d [--levels 3] [--coupling variable|dual] [--quick] [--out DIR]
-// Writes: runs.csv (one row per refinement type and level), summary.csv.
+// Writes: runs.csv (one row per refinement type and level), summary.csv, grid_<type>_level<l>.vtu (the
+// refined grids with their levels and horizons).
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/refined_grid_vtu.hpp"
 #include "problems/common/refined_wave.hpp"
 
 #include <cmath>
@@ -91,6 +93,7 @@ static int run_case(int argc, char** argv)
         for (int l = (kind == Kind::delta_no_fix ? levels : 1); l <= levels; ++l) {
             // 3.-5. Refined grid and uniform reference with the refined grid's step.
             const pd::RefinedGrid<2> g = grid(r, kind, l);
+            pd::io::write_refined_grid_vtu(run.file("grid_" + std::string(kname) + "_level" + std::to_string(l) + ".vtu"), g);
             const double dt = 0.5 * pd::wave::WaveScene(pulse, g, coupling).critical_step(pulse.rho);
             const pd::wave::WaveHistory ref = pd::wave::run_wave(pulse, uniform, coupling, dt);
             const pd::wave::WaveHistory h = pd::wave::run_wave(pulse, g, coupling, dt);

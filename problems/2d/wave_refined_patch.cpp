@@ -22,9 +22,10 @@
 // dE_tot, du).
 // Run: wave_refined_patch_2d [--models A,B,C] [--t-end 0.08] [--quick] [--out DIR]
 // Writes: runs.csv, profile.csv (W on the node row just above y = 0.02 m at t = 0.0582 s, over the uniform
-// run's maximum), summary.csv.
+// run's maximum), summary.csv, grid_<model>.vtu (the refined grid with its levels and horizons).
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/refined_grid_vtu.hpp"
 #include "problems/common/refined_wave.hpp"
 
 #include <algorithm>
@@ -95,6 +96,7 @@ static int run_case(int argc, char** argv)
     for (char name : models) {
         if (name == ',') continue;
         const pd::RefinedGrid<2> g = grid(w, name);
+        pd::io::write_refined_grid_vtu(run.file(std::string("grid_") + name + ".vtu"), g);
         const std::vector<int> ids = g.ids();
         for (const pd::HorizonCoupling coupling : {pd::HorizonCoupling::source, pd::HorizonCoupling::dual}) {
             const WaveHistory h = pd::wave::run_wave(pulse, g, coupling, dt);
