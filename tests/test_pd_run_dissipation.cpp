@@ -122,7 +122,8 @@ TEST(PdRunDissipation, JohnsonCookSofteningReadsTheRunsTemperatures)
     const auto a = read_csv(hot.dir / "energy.csv"), b = read_csv(half.dir / "energy.csv"), c = read_csv(cold.dir / "energy.csv");
     const std::size_t last = a.rows.size() - 1;
     for (std::size_t q = 0; q <= last; ++q)
-        for (const std::size_t col : {2u, 3u}) EXPECT_NEAR(a.number(q, col), b.number(q, col), 1e-12 * a.number(0, 5)) << q;
+        for (const std::size_t col : {2u, 3u})  // measured identical; bound: round-off of the two products, far below the 10 % of c
+            EXPECT_NEAR(a.number(q, col), b.number(q, col), 1e-12 * a.number(0, 5)) << q;
     EXPECT_GT(std::abs(c.number(last, 2) - a.number(last, 2)), 0.1 * a.number(last, 2));  // without softening: another motion
 }
 

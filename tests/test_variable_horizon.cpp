@@ -76,10 +76,10 @@ TEST(RefinedGrid, MethodBSplitsACellIntoItsSubCellsAndKeepsTheVolume)  // V6a
     g.split({g.first_child[p] + 3}, pd::Refinement::delta);  // a grandchild level
     double after = 0;
     for (std::size_t i = 0; i < g.size(); ++i) after += g.active[i] ? g.volume[i] : 0.0;
-    EXPECT_NEAR(after, total, 1e-15 * total);
+    EXPECT_NEAR(after, total, 1e-15 * total);  // sums of quarter volumes: a few ulps
     for (int c = 0; c < 4; ++c) {
         const int k = g.first_child[p] + c;
-        EXPECT_NEAR(g.x.c[0][k], 5.5 * h0 + (c & 1 ? 0.25 : -0.25) * h0, 1e-18);
+        EXPECT_NEAR(g.x.c[0][k], 5.5 * h0 + (c & 1 ? 0.25 : -0.25) * h0, 1e-18);  // round-off of coordinates ~5e-3 m
         EXPECT_NEAR(g.x.c[1][k], 5.5 * h0 + (c & 2 ? 0.25 : -0.25) * h0, 1e-18);
         EXPECT_EQ(g.volume[k], g.volume[p] / 4);
         EXPECT_EQ(g.h[k], h0 / 2);
@@ -115,6 +115,22 @@ TEST(RefinedGrid, NoCoarserNodeSeesTheNodeRefinedAround)  // V6b, both refinemen
             for (int q = 0; q < 4; ++q) EXPECT_EQ(g.ancestor(g.first_child[c] + q), n0);
         }
     }
+}
+
+TEST(RefinedGrid, NestedRefinementKeepsNodesTwoLevelsFinerOutOfEveryHorizon)
+{
+    pd::RefinedGrid<2> g = plate();
+    g.refine_nested([](const pd::Vec<2>& x, double s) { return x[0] < 12 * h0 - s; }, 3, pd::Refinement::delta);
+    const std::vector<int> ids = g.ids();
+    int deepest = 0;
+    for (int i : ids) {
+        deepest = std::max(deepest, g.level[i]);
+        for (int j : ids)
+            if (g.level[j] >= g.level[i] + 2) {
+                EXPECT_GT(norm(g.x[j] - g.x[i]), g.delta[i]) << i << " sees " << j;
+            }
+    }
+    EXPECT_EQ(deepest, 3);
 }
 
 TEST(RefinedGrid, InterfaceHorizonIsMTimesTheDistanceToTheNearestCoarserNode)  // V6e

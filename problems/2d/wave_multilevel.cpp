@@ -42,22 +42,11 @@ enum class Kind { delta, delta_no_fix, delta_m };
 pd::RefinedGrid<2> grid(const Region& r, Kind kind, int levels)
 {
     pd::RefinedGrid<2> g(pd::box<2>({{0, 0}}, {{r.Lx, r.Ly}}, r.dx0), r.m * r.dx0);
-    auto level_delta = [&](int k) {  // the horizon of the level-k nodes (before any interface horizon) [m]
-        for (std::size_t i = 0; i < g.size(); ++i)
-            if (g.level[i] == k) return g.delta[i];
-        return 0.0;
+    auto inside = [&](const pd::Vec<2>& x, double shrink) {
+        return x[0] > r.x0 + shrink && x[0] < r.x1 - shrink && x[1] > r.y0 + shrink && x[1] < r.y1 - shrink;
     };
-    double shrink = 0;  // the horizons of levels 0 .. l-2 together [m]
-    for (int l = 1; l <= levels; ++l) {
-        if (l >= 2) shrink += level_delta(l - 2);
-        std::vector<int> split;
-        for (int i : g.ids()) {
-            const double x = g.x.c[0][i], y = g.x.c[1][i];
-            if (g.level[i] == l - 1 && x > r.x0 + shrink && x < r.x1 - shrink && y > r.y0 + shrink && y < r.y1 - shrink) split.push_back(i);
-        }
-        if (kind == Kind::delta_m) g.split(split, pd::Refinement::delta_m, r.m + l);  // m = 4, 5, 6 (Table 4.5)
-        else g.split(split, pd::Refinement::delta);
-    }
+    if (kind == Kind::delta_m) g.refine_nested(inside, levels, pd::Refinement::delta_m, [&](int l) { return r.m + l; });  // m = 4, 5, 6 (Table 4.5)
+    else g.refine_nested(inside, levels, pd::Refinement::delta);
     if (kind == Kind::delta) g.interface_horizon(r.m);
     return g;
 }

@@ -35,14 +35,7 @@ pd::RefinedGrid<2> refined_plate(const Plate& P, int levels, bool upper)
     for (long j = -ny; j <= ny; ++j)
         for (long i = -nx; i <= nx; ++i) b.push({{i * P.dx0, j * P.dx0}}, P.dx0 * P.dx0 * P.t);
     pd::RefinedGrid<2> g(b, P.delta0);
-    double setback = 0;  // distance from the axis beyond which level l starts [m] (header)
-    for (int l = 1; l <= levels; ++l) {
-        std::vector<int> split;
-        for (int i : g.ids())
-            if (g.level[i] == l - 1 && (upper ? g.x.c[1][i] : -g.x.c[0][i]) > setback + on_axis) split.push_back(i);
-        setback += P.delta0 / std::pow(2.0, l - 1);
-        g.split(split, pd::Refinement::delta);
-    }
+    g.refine_nested([&](const pd::Vec<2>& x, double setback) { return (upper ? x[1] : -x[0]) > setback + on_axis; }, levels, pd::Refinement::delta);
     return g;
 }
 

@@ -67,16 +67,11 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
             const int j = near.partner[q];
             const double r = norm(body.x[j] - xi);
             if (r == 0) throw std::invalid_argument("duplicate points " + std::to_string(i) + " and " + std::to_string(j));
-            double beta = 1;
-            if (opt.partial_volume == PartialVolume::pa_pdlammps && r > delta - h / 2)
-                beta = std::min(1.0, (delta + h / 2 - r) / h);  // spec/002 sec. 3.2, PA-PDLAMMPS
+            Vec<D> e = body.x[j] - xi;
             if constexpr (D == 2)
-                if (exact && r > delta - h * std::sqrt(0.5)) {  // cells nearer lie wholly inside
-                    const Vec<2> e = body.x[j] - xi;  // in the lattice's axes, folded (the area is symmetric) so that beta_ij == beta_ji
-                    const Vec<2> u{{std::abs(ca * e[0] + sa * e[1]), std::abs(-sa * e[0] + ca * e[1])}};
-                    beta = cell_fraction_in_horizon(u, delta, h);
-                    if (!(beta > 1e-12)) continue;  // corner outside, or inside by round-off only
-                }
+                if (exact) e = Vec<2>{{ca * e[0] + sa * e[1], -sa * e[0] + ca * e[1]}};  // in the lattice's axes
+            const double beta = partner_share<D>(e, r, delta, h, opt.partial_volume);
+            if (!(beta > 0)) continue;
             b.partner.push_back(j);
             b.length.push_back(r);
             b.omega.push_back(opt.influence(r, delta));
@@ -85,17 +80,20 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
         b.offset[i + 1] = static_cast<std::int64_t>(b.partner.size());
     }
 
-    // 3. Reverse-bond index: families are sorted by partner, so j->i is found by binary search.
-    b.reverse.resize(b.size());
-    for (std::size_t i = 0; i < n; ++i)
+    index_reverse_bonds(b, true);  // 3.
+    return b;
+}
+
+void index_reverse_bonds(Bonds& b, bool symmetric)
+{
+    b.reverse.assign(b.size(), -1);
+    for (std::size_t i = 0; i < b.nodes(); ++i)
         for_family(b, i, [&](std::int64_t k, int j) {
             auto first = b.partner.begin() + b.offset[j], last = b.partner.begin() + b.offset[j + 1];
             auto it = std::lower_bound(first, last, static_cast<int>(i));
-            if (it == last || *it != static_cast<int>(i))
-                throw std::logic_error("bond family is not symmetric (keep filter must be symmetric)");
-            b.reverse[k] = it - b.partner.begin();
+            if (it != last && *it == static_cast<int>(i)) b.reverse[k] = it - b.partner.begin();
+            else if (symmetric) throw std::logic_error("bond family is not symmetric (keep filter must be symmetric)");
         });
-    return b;
 }
 
 std::vector<std::array<long, 3>> full_family_offsets(double delta, double dx, int dim)

@@ -13,6 +13,7 @@
 #pragma once
 #include "pd/core/influence.hpp"
 #include "pd/core/lattice.hpp"
+#include "pd/core/partial_area.hpp"
 
 #include <array>
 #include <cstdint>
@@ -90,6 +91,28 @@ inline constexpr double horizon_roundoff = 1e-10;
 
 template <int D>
 Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt = {});
+
+// The share beta of a partner's cell (side h) in the horizon delta of a node (header), the partner at
+// offset e (in the lattice's axes for exact_area), r = |e|; 0: the partner is no family member.
+// build_bonds and the per-node horizons (variable_horizon.hpp) both take it.
+template <int D>
+inline double partner_share(const Vec<D>& e, double r, double delta, double h, PartialVolume pv)
+{
+    if constexpr (D == 2)
+        if (pv == PartialVolume::exact_area) {
+            if (r <= delta - h * std::sqrt(0.5)) return 1.0;  // cells nearer lie wholly inside
+            // folded (the area is symmetric) so that beta_ij == beta_ji
+            const double a = cell_fraction_in_horizon(Vec<2>{{std::abs(e[0]), std::abs(e[1])}}, delta, h);
+            return a > 1e-12 ? a : 0.0;  // corner outside, or inside by round-off only
+        }
+    if (r > delta * (1 + horizon_roundoff)) return 0.0;
+    if (pv == PartialVolume::pa_pdlammps && r > delta - h / 2) return std::min(1.0, (delta + h / 2 - r) / h);  // spec/002 sec. 3.2
+    return 1.0;
+}
+
+// The reverse-bond index of families sorted by partner (j -> i by binary search). symmetric: every
+// bond has its twin, else std::logic_error; otherwise a bond without one gets reverse = -1.
+void index_reverse_bonds(Bonds& b, bool symmetric);
 
 // True when no bond is longer than delta (with the roundoff rule); false for exact-area families,
 // which also hold the cells the horizon cuts beyond delta.

@@ -7,6 +7,9 @@
 //     delta (delta halves, m kept), m (delta kept, m doubles) or delta_m (delta = m_level h_child).
 //   visibility_zone(nodes): the nodes to split so that no coarser node sees the given ones (sec. 4.5,
 //     Alg. A.3): the given active nodes and every active node of the same level within their horizon.
+//   refine_nested(inside, levels, rule): `levels` splits of a region, nested so that no node sees a
+//     node two levels finer: level l splits the active level l-1 nodes with inside(x, s), s the sum of
+//     the horizons of levels 0 .. l-2 (the caller's region shrunk by s); m_level(l) for delta_m.
 //   ancestor(node): the level-0 node it descends from (the triggers work on level-0 ids, V6f).
 //   interface_horizon(m): the interface nodes of the refined region take delta = m d_min, d_min the
 //     distance to the nearest coarser node (sec. 4.6, the fix of the partial cells PA-PDLAMMPS drops;
@@ -21,6 +24,7 @@
 #include "pd/core/lattice.hpp"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -72,6 +76,25 @@ struct RefinedGrid {
                 add(xc, vp / children, hc, dc, lp + 1, p);
             }
             active[p] = 0;
+        }
+    }
+
+    // The nested refinement of a region (header). inside(x, s) [m]: x lies in the region shrunk by s.
+    template <class Inside>
+    void refine_nested(Inside&& inside, int levels, Refinement rule, const std::function<double(int)>& m_level = {})
+    {
+        double shrink = 0;  // the horizons of levels 0 .. l-2 together [m]
+        for (int l = 1; l <= levels; ++l) {
+            if (l >= 2)
+                for (std::size_t i = 0; i < size(); ++i)
+                    if (level[i] == l - 2) {
+                        shrink += delta[i];
+                        break;
+                    }
+            std::vector<int> nodes;
+            for (std::size_t i = 0; i < size(); ++i)
+                if (active[i] && level[i] == l - 1 && inside(x[i], shrink)) nodes.push_back(static_cast<int>(i));
+            split(nodes, rule, rule == Refinement::delta_m ? m_level(l) : 0.0);
         }
     }
 

@@ -11,15 +11,14 @@
 //           fraction of j's cell inside i's horizon (0 when j is not in H(i)). c_ij = c_ji, so the
 //           pair forces are equal and opposite: the internal forces sum to zero (no ghost force).
 //           With one delta everywhere c_ij = c a_ij: the usual family.
-// Partial volumes: a_ij = 1 (none), PA-PDLAMMPS's linear rule with delta_i and h_j, or (2D) the
-// exact area of j's square cell (side h_j, lattice axes along x) inside the disc of radius delta_i
-// (partial_area.hpp). The families hold the full volumes V_j; a_ij enters through the factors.
+// Partial volumes: a_ij = partner_share (bonds.hpp) with delta_i and h_j: 1 (none), PA-PDLAMMPS's
+// linear rule, or (2D) the exact area of j's square cell (lattice axes along x) inside the disc of
+// radius delta_i. The families hold the full volumes V_j; a_ij enters through the factors.
 // Influence function 1 only (the source's choice, spec/002 sec. 2.3).
 #pragma once
 #include "pd/core/bonds.hpp"
 #include "pd/core/lattice.hpp"
 #include "pd/core/neighbors.hpp"
-#include "pd/core/partial_area.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,23 +37,6 @@ struct HorizonFamilies {
     std::vector<double> share;    // a_ij per bond k = (i -> j): j's cell fraction inside H(i) [-] (0: j outside it)
     HorizonCoupling coupling = HorizonCoupling::dual;
 };
-
-namespace detail {
-// a_ij of a partner at offset e from the source: its cell (side h) inside the horizon delta.
-template <int D>
-inline double cell_share(const Vec<D>& e, double r, double delta, double h, PartialVolume pv)
-{
-    const bool inside = r <= delta * (1 + horizon_roundoff);  // build_bonds' rule: a lattice partner at delta stays
-    if (pv == PartialVolume::pa_pdlammps) return inside ? std::min(1.0, (delta + h / 2 - r) / h) : 0.0;
-    if constexpr (D == 2)
-        if (pv == PartialVolume::exact_area) {
-            if (r <= delta - h * std::sqrt(0.5)) return 1.0;  // the whole cell is inside
-            const double a = cell_fraction_in_horizon(Vec<2>{{std::abs(e[0]), std::abs(e[1])}}, delta, h);
-            return a > 1e-12 ? a : 0.0;  // inside by round-off only
-        }
-    return inside ? 1.0 : 0.0;
-}
-}  // namespace detail
 
 // The families of a body whose node i has horizon delta[i] and cell side h[i] (h is used by the
 // partial volumes only). Throws std::invalid_argument for sizes that differ, non-positive values,
@@ -77,7 +59,7 @@ HorizonFamilies build_variable_horizon_bonds(const Body<D>& body, const std::vec
     b.offset.assign(n + 1, 0);
     b.delta = n > 0 ? *std::max_element(delta.begin(), delta.end()) : 0.0;
     if (n == 0) return f;
-    auto share = [&](std::size_t i, int j, double r) { return detail::cell_share<D>(body.x[j] - body.x[i], r, delta[i], h[j], pv); };
+    auto share = [&](std::size_t i, int j, double r) { return partner_share<D>(body.x[j] - body.x[i], r, delta[i], h[j], pv); };
     const NeighborLists near = neighbor_lists(body.x, reach * (1 + 1e-6), [&](int i, int j) {
         const double r = norm(body.x[j] - body.x[i]);
         return share(i, j, r) > 0 || (coupling == HorizonCoupling::dual && share(j, i, r) > 0);
@@ -92,13 +74,7 @@ HorizonFamilies build_variable_horizon_bonds(const Body<D>& body, const std::vec
         }
         b.offset[i + 1] = static_cast<std::int64_t>(b.partner.size());
     }
-    b.reverse.assign(b.size(), -1);  // families sorted by partner: j -> i by binary search
-    for (std::size_t i = 0; i < n; ++i)
-        for_family(b, i, [&](std::int64_t k, int j) {
-            const auto first = b.partner.begin() + b.offset[j], last = b.partner.begin() + b.offset[j + 1];
-            const auto it = std::lower_bound(first, last, static_cast<int>(i));
-            if (it != last && *it == static_cast<int>(i)) b.reverse[k] = it - b.partner.begin();
-        });
+    index_reverse_bonds(b, coupling == HorizonCoupling::dual);  // the plain variable horizon's lost bonds: -1
     return f;
 }
 

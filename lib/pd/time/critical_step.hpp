@@ -19,38 +19,40 @@ struct CriticalStep {
     int node = -1;  // node that limits it
 };
 
-inline CriticalStep critical_step_silling_askari(const Bonds& b, const std::vector<double>& rho, double c)
+namespace detail {
+// min_i sqrt(2 rho(i) / sum_k spring(k)) over the nodes with bonds: the one loop of the overloads below.
+template <class Rho, class Spring>
+CriticalStep silling_askari(const Bonds& b, Rho&& rho, Spring&& spring)
 {
     CriticalStep r{std::numeric_limits<double>::infinity(), -1};
     for (std::size_t i = 0; i < b.nodes(); ++i) {
-        double stiffness = 0;  // sum_j omega V_j c / |xi|: force density per displacement [N/m^4]
-        for_family(b, i, [&](std::int64_t k, int) { stiffness += b.omega[k] * b.volume[k] * c / b.length[k]; });
+        double stiffness = 0;  // sum of the bond springs: force density per displacement [N/m^4 in 3D]
+        for_family(b, i, [&](std::int64_t k, int) { stiffness += spring(k); });
         if (stiffness <= 0) continue;
-        const double dt = std::sqrt(2 * rho[i] / stiffness);
+        const double dt = std::sqrt(2 * rho(i) / stiffness);
         if (dt < r.dt) r = {dt, static_cast<int>(i)};
     }
     return r;
+}
+}  // namespace detail
+
+inline CriticalStep critical_step_silling_askari(const Bonds& b, const std::vector<double>& rho, double c)
+{
+    return detail::silling_askari(b, [&](std::size_t i) { return rho[i]; },
+                                  [&](std::int64_t k) { return b.omega[k] * b.volume[k] * c / b.length[k]; });
 }
 
 // The same with one density rho [kg/m^3] for every node.
 inline CriticalStep critical_step_silling_askari(const Bonds& b, double rho, double c)
 {
-    return critical_step_silling_askari(b, std::vector<double>(b.nodes(), rho), c);
+    return detail::silling_askari(b, [&](std::size_t) { return rho; }, [&](std::int64_t k) { return b.omega[k] * b.volume[k] * c / b.length[k]; });
 }
 
 // The same with a spring constant per bond, spring[k] = c_k omega V_j / |xi| [N/m^4 in 3D] (e.g.
 // PMB::coef after scale_bonds: a surface correction or the micromoduli of variable horizons).
 inline CriticalStep critical_step_silling_askari(const Bonds& b, double rho, const std::vector<double>& spring)
 {
-    CriticalStep r{std::numeric_limits<double>::infinity(), -1};
-    for (std::size_t i = 0; i < b.nodes(); ++i) {
-        double stiffness = 0;  // [N/m^4]
-        for_family(b, i, [&](std::int64_t k, int) { stiffness += spring[k]; });
-        if (stiffness <= 0) continue;
-        const double dt = std::sqrt(2 * rho / stiffness);
-        if (dt < r.dt) r = {dt, static_cast<int>(i)};
-    }
-    return r;
+    return detail::silling_askari(b, [&](std::size_t) { return rho; }, [&](std::int64_t k) { return spring[k]; });
 }
 
 inline double critical_step_cfl(double h, double wave_speed) { return h / wave_speed; }
