@@ -145,7 +145,7 @@ static int run_case(int argc, char** argv)
                 for (std::size_t l = 0; l < h->size(); ++l) th.row({name, h->t[l], h->x[l][0], h->x[l][1], h->advance[l]});
                 for (const auto& s : h->speed(window)) sp.row({name, s.t, s.v});
             }
-            pd::crack::write_damage_csv(out / "damage.csv", body, phi);
+            pd::crack::write_damage_csv(out / "damage.csv", body.x, phi);
             pd::crack::write_crack_path_csv(out / "crack_path.csv", body, phi);
         }
     }

@@ -86,14 +86,19 @@ Bonds build_bonds(const Body<D>& body, double delta, const BondOptions& opt)
 
 void index_reverse_bonds(Bonds& b, bool symmetric)
 {
+    // One merge pass: visiting i in ascending order, the bonds j -> l (l < j) of a family sorted by
+    // partner are met in the order of l, so a cursor per family finds each twin in O(1).
     b.reverse.assign(b.size(), -1);
+    std::vector<std::int64_t> next(b.offset.begin(), b.offset.end() - 1);
     for (std::size_t i = 0; i < b.nodes(); ++i)
         for_family(b, i, [&](std::int64_t k, int j) {
-            auto first = b.partner.begin() + b.offset[j], last = b.partner.begin() + b.offset[j + 1];
-            auto it = std::lower_bound(first, last, static_cast<int>(i));
-            if (it != last && *it == static_cast<int>(i)) b.reverse[k] = it - b.partner.begin();
-            else if (symmetric) throw std::logic_error("bond family is not symmetric (keep filter must be symmetric)");
+            if (j <= static_cast<int>(i)) return;
+            std::int64_t p = next[j];
+            while (p < b.offset[j + 1] && b.partner[p] < static_cast<int>(i)) ++p;  // j -> l without a twin
+            if (p < b.offset[j + 1] && b.partner[p] == static_cast<int>(i)) b.reverse[k] = p, b.reverse[p] = k, next[j] = p + 1;
         });
+    if (symmetric && std::find(b.reverse.begin(), b.reverse.end(), std::int64_t{-1}) != b.reverse.end())
+        throw std::logic_error("bond family is not symmetric (keep filter must be symmetric)");
 }
 
 std::vector<std::array<long, 3>> full_family_offsets(double delta, double dx, int dim)

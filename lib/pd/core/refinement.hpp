@@ -10,6 +10,10 @@
 //   refine_nested(inside, levels, rule): `levels` splits of a region, nested so that no node sees a
 //     node two levels finer: level l splits the active level l-1 nodes with inside(x, s), s the sum of
 //     the horizons of levels 0 .. l-2 (the caller's region shrunk by s); m_level(l) for delta_m.
+//   refine_around(ids, levels, rule): Alg. A.3 of the triggers, around level-0 nodes `ids`: level l
+//     splits the active level l-1 nodes within their horizon of the level l-1 descendants of ids (so
+//     no coarser node sees one of them, sec. 4.5); nodes split before are left as they are. Returns
+//     how many nodes it split (0: the zone was refined already).
 //   ancestor(node): the level-0 node it descends from (the triggers work on level-0 ids, V6f).
 //   interface_horizon(m): the interface nodes of the refined region take delta = m d_min, d_min the
 //     distance to the nearest coarser node (sec. 4.6, the fix of the partial cells PA-PDLAMMPS drops;
@@ -18,12 +22,17 @@
 //     near side of a parent cell at the interface at sqrt(10)/2 h; those on its far side, at
 //     sqrt(26)/2 h, are not). So m d_min stays between the source's 3 h and 4.24 h (Method A) or is
 //     3 sqrt(10)/2 h = 4.74 h (Method B, m = 3).
+//     Every other refined node takes back its nominal horizon (the refinement rule's, kept in
+//     `nominal`, from which children are made), so the rule can be applied again after more splits.
 //   body(): the active nodes as a Body (ids(): their node numbers), with h and delta per active node.
-// Node numbers never change: children are appended.
+// Node numbers never change: children are appended. Searches use cell lists (neighbors.hpp): O(N).
 #pragma once
 #include "pd/core/lattice.hpp"
+#include "pd/core/neighbors.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -39,6 +48,7 @@ struct RefinedGrid {
     Field<D> x;                        // cell centres [m]
     std::vector<double> volume, h;     // cell volume [m^3] (its measure included), side [m]
     std::vector<double> delta;         // horizon [m]
+    std::vector<double> nominal;       // horizon of the refinement rule (delta but at interfaces) [m]
     std::vector<int> level, parent;    // level (0: the initial grid), parent node (-1 at level 0)
     std::vector<int> first_child;      // the first of its 2^D children (-1: not split)
     std::vector<std::uint8_t> active;  // 1: a node of the computation; 0: split
@@ -65,7 +75,7 @@ struct RefinedGrid {
             if (p < 0 || p >= static_cast<int>(size()) || !active[p])
                 throw std::invalid_argument("RefinedGrid::split: node " + std::to_string(p) + " is not an active node");
             const double hc = h[p] / 2;
-            const double dc = rule == Refinement::delta ? delta[p] / 2 : rule == Refinement::m ? delta[p] : m_level * hc;
+            const double dc = rule == Refinement::delta ? nominal[p] / 2 : rule == Refinement::m ? nominal[p] : m_level * hc;
             first_child[p] = static_cast<int>(size());
             const Vec<D> xp = x[p];
             const double vp = volume[p];
@@ -101,17 +111,38 @@ struct RefinedGrid {
     // The nodes to split around `nodes` (header), each once, ascending.
     std::vector<int> visibility_zone(const std::vector<int>& nodes) const
     {
-        std::vector<std::uint8_t> pick(size(), 0);
-        for (int q : nodes) {
+        for (int q : nodes)
             if (q < 0 || q >= static_cast<int>(size()) || !active[q])
                 throw std::invalid_argument("RefinedGrid::visibility_zone: node " + std::to_string(q) + " is not an active node");
-            for (std::size_t i = 0; i < size(); ++i)
-                if (active[i] && level[i] == level[q] && norm(x[i] - x[q]) <= delta[q] * (1 + 1e-10)) pick[i] = 1;
-        }
         std::vector<int> zone;
-        for (std::size_t i = 0; i < size(); ++i)
-            if (pick[i]) zone.push_back(static_cast<int>(i));
+        for (int i : same_level_within(nodes))
+            if (active[i]) zone.push_back(i);
         return zone;
+    }
+
+    // Alg. A.3 around level-0 nodes (header); m_level(l) for delta_m.
+    int refine_around(const std::vector<int>& ids, int levels, Refinement rule, const std::function<double(int)>& m_level = {})
+    {
+        std::vector<int> nodes;  // the level l-1 descendants of ids
+        for (int q : ids) {
+            if (q < 0 || q >= static_cast<int>(size()) || level[q] != 0)
+                throw std::invalid_argument("RefinedGrid::refine_around: node " + std::to_string(q) + " is not a level-0 node");
+            nodes.push_back(q);
+        }
+        int split_count = 0;
+        for (int l = 1; l <= levels && !nodes.empty(); ++l) {
+            std::vector<int> todo;
+            for (int i : same_level_within(nodes))
+                if (active[i]) todo.push_back(i);
+            split(todo, rule, rule == Refinement::delta_m ? m_level(l) : 0.0);
+            split_count += static_cast<int>(todo.size());
+            std::vector<int> next;
+            for (int q : nodes)
+                if (first_child[q] >= 0)
+                    for (int c = 0; c < children; ++c) next.push_back(first_child[q] + c);
+            nodes = std::move(next);
+        }
+        return split_count;
     }
 
     int ancestor(int node) const
@@ -120,16 +151,27 @@ struct RefinedGrid {
         return node;
     }
 
-    // The interface horizon (header); returns how many nodes it changed.
+    // The interface horizon (header); returns how many nodes it gave the interface horizon.
     int interface_horizon(double m)
     {
+        double reach = 0;  // 2 h of the coarsest refined node [m]
+        for (std::size_t i = 0; i < size(); ++i)
+            if (active[i] && level[i] > 0) reach = std::max(reach, 2 * h[i]);
+        if (reach == 0) return 0;
+        Field<D> act;  // the active nodes, binned
+        const std::vector<int> index = ids();
+        for (int i : index)
+            for (int d = 0; d < D; ++d) act.c[d].push_back(x.c[d][i]);
+        const CellBins<D> bins(act, reach);
         int changed = 0;
         for (std::size_t i = 0; i < size(); ++i) {
             if (!active[i] || level[i] == 0) continue;
             double d_min = std::numeric_limits<double>::infinity();
-            for (std::size_t j = 0; j < size(); ++j)
-                if (active[j] && level[j] < level[i]) d_min = std::min(d_min, norm(x[j] - x[i]));
-            if (d_min < 2 * h[i]) delta[i] = m * d_min, ++changed;
+            bins.near(x[i], [&](int s) {
+                if (level[index[s]] < level[i]) d_min = std::min(d_min, norm(x[index[s]] - x[i]));
+            });
+            delta[i] = d_min < 2 * h[i] ? m * d_min : nominal[i];
+            changed += d_min < 2 * h[i];
         }
         return changed;
     }
@@ -155,8 +197,38 @@ private:
     void add(const Vec<D>& p, double v, double side, double hor, int lev, int par)
     {
         for (int d = 0; d < D; ++d) x.c[d].push_back(p[d]);
-        volume.push_back(v), h.push_back(side), delta.push_back(hor), level.push_back(lev), parent.push_back(par);
+        volume.push_back(v), h.push_back(side), delta.push_back(hor), nominal.push_back(hor), level.push_back(lev), parent.push_back(par);
         first_child.push_back(-1), active.push_back(1);
+    }
+    // The nodes (active or split) of the level of each given node within its nominal horizon, ascending.
+    std::vector<int> same_level_within(const std::vector<int>& nodes) const
+    {
+        std::vector<std::uint8_t> pick(size(), 0), levels;
+        double reach = 0;
+        for (int q : nodes) {
+            pick[q] = 1, reach = std::max(reach, nominal[q]);
+            if (static_cast<std::size_t>(level[q]) >= levels.size()) levels.resize(level[q] + 1, 0);
+            levels[level[q]] = 1;
+        }
+        if (!nodes.empty()) {
+            Field<D> near_x;  // the nodes of the given nodes' levels, binned
+            std::vector<int> index;
+            for (std::size_t i = 0; i < size(); ++i)
+                if (static_cast<std::size_t>(level[i]) < levels.size() && levels[level[i]]) {
+                    for (int d = 0; d < D; ++d) near_x.c[d].push_back(x.c[d][i]);
+                    index.push_back(static_cast<int>(i));
+                }
+            const CellBins<D> bins(near_x, reach * (1 + 1e-10));
+            for (int q : nodes)
+                bins.near(x[q], [&](int s) {
+                    const int j = index[s];
+                    if (level[j] == level[q] && norm(x[j] - x[q]) <= nominal[q] * (1 + 1e-10)) pick[j] = 1;
+                });
+        }
+        std::vector<int> out;
+        for (std::size_t i = 0; i < size(); ++i)
+            if (pick[i]) out.push_back(static_cast<int>(i));
+        return out;
     }
     std::vector<double> gather(const std::vector<double>& a) const
     {

@@ -16,18 +16,23 @@ namespace pd {
 // such as (k + 1/2) dx are inexact in binary, so a bond through the crack tip would otherwise be
 // cut or kept by round-off (spec/001_004 V3: 5 of the 10 tip-touching bonds of seed 001's plate).
 inline constexpr double touch_roundoff = 1e-10;
-inline std::function<bool(int, int)> cut_by_segment(const Body<2>& body, Vec<2> a, Vec<2> b)
+// The crossing test on the end points p, q of a bond (true: the bond crosses the crack a-b).
+inline std::function<bool(const Vec<2>&, const Vec<2>&)> segment_crossing(Vec<2> a, Vec<2> b)
 {
-    auto orient = [](const Vec<2>& p, const Vec<2>& q, const Vec<2>& r) {
-        return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
-    };
-    return [&body, a, b, orient](int i, int j) {
-        const Vec<2> p = body.x[std::min(i, j)], q = body.x[std::max(i, j)];  // same arithmetic for i-j and j-i
+    return [a, b](const Vec<2>& p, const Vec<2>& q) {
+        auto orient = [](const Vec<2>& o, const Vec<2>& s, const Vec<2>& r) {
+            return (s[0] - o[0]) * (r[1] - o[1]) - (s[1] - o[1]) * (r[0] - o[0]);
+        };
         const double tol = touch_roundoff * norm(b - a) * norm(q - p);
         auto sign = [tol](double d) { return d > tol ? 1 : (d < -tol ? -1 : 0); };
         const int d1 = sign(orient(a, b, p)), d2 = sign(orient(a, b, q)), d3 = sign(orient(p, q, a)), d4 = sign(orient(p, q, b));
-        const bool cross = d1 * d2 <= 0 && d3 * d4 <= 0;
-        return !cross;
+        return d1 * d2 <= 0 && d3 * d4 <= 0;
+    };
+}
+inline std::function<bool(int, int)> cut_by_segment(const Body<2>& body, Vec<2> a, Vec<2> b)
+{
+    return [&body, crosses = segment_crossing(a, b)](int i, int j) {
+        return !crosses(body.x[std::min(i, j)], body.x[std::max(i, j)]);  // same arithmetic for i-j and j-i
     };
 }
 
