@@ -131,8 +131,9 @@ TEST(AdaptiveRefinement, TransferReproducesLinearFieldsWithoutCrossingTheCrack)
 }
 
 // Alg. A.3: refine_around splits the level-0 zone of the given node and, for two levels, the level-1
-// zone of its children only; a second call on the same node splits nothing; the interface horizon
-// comes back to the nominal one on nodes that are no longer at an interface.
+// zone of its children only; a second call on the same node splits nothing (needs_refinement says
+// so); a margin of one cell widens the zone to 4 h0; the interface horizon comes back to the nominal
+// one on nodes that are no longer at an interface.
 TEST(AdaptiveRefinement, RefineAroundIsTheNestedZoneOfTheNode)
 {
     pd::RefinedGrid<2> g = grid();
@@ -154,6 +155,11 @@ TEST(AdaptiveRefinement, RefineAroundIsTheNestedZoneOfTheNode)
     EXPECT_EQ(level0_split, 29);  // lattice points in a disc of radius 3 h0
     EXPECT_EQ(split, level0_split + level1);
     EXPECT_EQ(g.refine_around({q}, 2, pd::Refinement::delta), 0);
+    EXPECT_FALSE(g.needs_refinement({q}, 2));
+    EXPECT_TRUE(g.needs_refinement({q + 4}, 1));  // its zone reaches one column beyond the refined disc
+    pd::RefinedGrid<2> wide = grid();  // a margin of one cell: the lattice points within 4 h0
+    wide.refine_around({q}, 1, pd::Refinement::delta, {}, 1.0);
+    EXPECT_EQ(static_cast<int>(wide.size() - 800) / 4, 49);
     g.interface_horizon(m);
     const std::vector<double> first = g.delta;
     g.refine_around({q + 3, q - 3}, 1, pd::Refinement::delta);  // the zone grows; old interface nodes become interior

@@ -132,7 +132,8 @@ static int run_case(int argc, char** argv)
     // 2.5 dx through nodes with phi >= 0.2), away from the loaded rows (tip_recorder.hpp).
     auto recorder = [&](double dx) {
         return pd::crack::TipRecorder{.origin = origin, .dir = dir, .threshold = threshold, .walk = walk, .step = 2.5 * dx,
-                                      .y_mid = H / 2, .half_band = H / 2 - m * dx, .tips = {}, .x = {}, .phi = {}, .phi0 = {}, .crack = {}};
+                                      .region = [&H, dx, &m](const pd::Vec<2>& p) { return std::abs(p[1] - H / 2) < H / 2 - m * dx; },
+                                      .beyond = {}, .tips = {}, .x = {}, .phi = {}, .phi0 = {}, .crack = {}};
     };
     // Metrics: initiation (tip one dx beyond its start), branch (crack_metrics.hpp rule, confirm over
     // 4 mm, branch lines fitted over 10 mm, bins of the finest dx), speeds over the window.

@@ -17,10 +17,13 @@
 // Writes: summary.csv (first dx), convergence.csv, tip_history.csv, speed.csv, damage.csv,
 // crack_path.csv (phi = 0.41), params.csv.
 #include "problems/common/crack/crack_run.hpp"
+#include "problems/common/crack/tip_recorder.hpp"
+#include "problems/common/crack/work_precision.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
 #include "pd/io/list_option.hpp"
+#include "pd/io/refined_grid_vtu.hpp"
 
 #include <cstdio>
 
@@ -33,6 +36,21 @@ struct Result {
     std::size_t nodes, bonds;
     long steps;
 };
+
+// tip_history<suffix>.csv and speed<suffix>.csv of both cracks, damage<suffix>.csv and on a lattice
+// crack_path<suffix>.csv (phi = 0.41) of the last sample.
+void write_tips(const std::filesystem::path& out, const std::string& suffix, const pd::crack::TipRecorder& up,
+                const pd::crack::TipRecorder& low, double window, const pd::Body<2>* lattice)
+{
+    pd::io::CsvWriter th(out / ("tip_history" + suffix + ".csv"), {"crack", "t_s", "x_m", "y_m", "distance_m"}, false);
+    pd::io::CsvWriter sp(out / ("speed" + suffix + ".csv"), {"crack", "t_s", "v_m_per_s"});
+    for (const auto& [name, h] : {std::pair{"upper", &up.tips}, std::pair{"lower", &low.tips}}) {
+        for (std::size_t l = 0; l < h->size(); ++l) th.row({name, h->t[l], h->x[l][0], h->x[l][1], h->advance[l]});
+        for (const auto& s : h->speed(window)) sp.row({name, s.t, s.v});
+    }
+    pd::crack::write_damage_csv(out / ("damage" + suffix + ".csv"), up.x, up.phi);
+    if (lattice) pd::crack::write_crack_path_csv(out / ("crack_path" + suffix + ".csv"), *lattice, up.phi);
+}
 }  // namespace
 
 static int run_case(int argc, char** argv)
@@ -58,6 +76,7 @@ static int run_case(int argc, char** argv)
     double& window = opt.add("window", 1.82e-6, "crack-speed window (spec/002: 1.82 us)", "s");
     double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
+    const pd::crack::AdaptiveCli adapt(opt, 15.3e-6, "both", "spec/002 V9: energy and damage triggers from 15.3 us");
     for (const char* o : {"E", "rho", "Gc", "v", "length", "height", "notch", "notch-distance", "dt", "dt-factor", "t-end", "window"})
         opt.require_positive(o);
     opt.require_at_least("m", 1);
@@ -66,6 +85,7 @@ static int run_case(int argc, char** argv)
     run.allow_checkpoints();
     run.parse(argc, argv);
     if (!(a0 < L) || !(gap < H)) opt.fail("option --notch/--notch-distance: notches must lie inside the plate");
+    adapt.validate(opt);
     const bool quick = run.quick();
     run.quick_default("t-end", 50e-6);  // initiation and the run of the cracks
     run.quick_default("dx-list", "1e-3");
@@ -75,79 +95,82 @@ static int run_case(int argc, char** argv)
     run.quick_threads = 1;
     run.start();
     const std::filesystem::path& out = run.out();
+
     const pd::crack::Material2D mat{E, rho, Gc, pd::Plane::strain};
     const double y_up = 0.5 * (H + gap), y_low = 0.5 * (H - gap);  // notch lines [m]
+    const pd::Vec<2> tip_up{{a0, y_up}}, tip_low{{a0, y_low}};
+    auto impact = [&](const pd::Body<2>& body, double dx) {  // prescribed velocity on the left node row between the notches
+        pd::Boundary<2> bc;
+        bc.prescribe({pd::Prescribed::Kind::velocity, pd::select(body, pd::in_box<2>({{-1, y_low}}, {{dx, y_up}}), "impact zone"), 0,
+                      pd::TimeFunction::constant(v_imp)});
+        return bc;
+    };
+    // Tips every ~0.1 us: per notch, the damaged node farthest from the notch tip among those
+    // connected to the notch band (steps <= 2.5 dx through nodes with phi >= 0.2, right of the notch
+    // tip minus 2 delta, on the notch's side of the mid-line), not the notch band itself (x < tip - dx).
+    auto recorder = [&](const pd::Vec<2>& tip, double dx) {
+        const bool upper = tip[1] > H / 2;
+        return pd::crack::TipRecorder{.origin = tip, .dir = {}, .threshold = threshold, .walk = walk, .step = 2.5 * dx,
+            .region = [&, upper, dx](const pd::Vec<2>& p) { return p[0] > a0 - 2 * m * dx && (p[1] > H / 2) == upper; },
+            .beyond = [&, dx](const pd::Vec<2>& p) { return p[0] >= a0 - dx; }, .tips = {}, .x = {}, .phi = {}, .phi0 = {}, .crack = {}};
+    };
+    // Metrics: initiation (either tip one dx beyond its notch), the angle of each crack (principal axis
+    // of its damaged nodes beyond 2 delta from the notch tip), maximum speeds over the window.
+    auto measure = [&](const pd::crack::TipRecorder& up, const pd::crack::TipRecorder& low, double dx, const pd::crack::RunInfo& info,
+                       std::size_t nodes, std::size_t bonds) {
+        auto angle = [&](const pd::crack::TipRecorder& rec) {
+            std::vector<pd::Vec<2>> pts;
+            for (std::size_t i = 0; i < rec.phi.size(); ++i)
+                if (rec.crack[i] && rec.phi[i] >= threshold && norm(rec.x[i] - rec.origin) > 2 * m * dx) pts.push_back(rec.x[i]);
+            return pts.size() >= 2 ? pd::crack::principal_angle(pts) * deg : pd::crack::nan;
+        };
+        std::printf("dx %.3g mm: %zu nodes, %zu bonds, dt %.3g ns (crit %.3g), %ld steps, %.1f s\n", dx * 1e3, nodes, bonds, info.dt * 1e9,
+                    info.dt_crit * 1e9, info.steps, info.wall);
+        return Result{dx, std::min(up.tips.initiation_time(0.99 * dx), low.tips.initiation_time(0.99 * dx)), angle(up), angle(low),
+                      up.tips.max_speed(window), low.tips.max_speed(window), info.wall, info.dt, nodes, bonds, info.steps};
+    };
+    const long every = std::max(1L, std::lround(0.1e-6 / dt_max));
 
     std::vector<Result> results;
     for (std::size_t q = 0; q < dxs.size(); ++q) {
-        // 2. Discretisation; notches as broken bonds.
-        const double dx = dxs[q], delta = m * dx;
+        // 2.-5. Discretisation, notches as broken bonds, the impact; integrate.
+        const double dx = dxs[q];
         if (std::lround(y_low / dx) < 2 * m) opt.fail("option --dx-list: dx too coarse for the ligaments");
         const pd::Body<2> body = pd::box<2>({{0, 0}}, {{L, H}}, dx);
-        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
+        pd::Bonds bonds = pd::build_bonds(body, m * dx, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
         for (double y : {y_up, y_low}) {
             const auto keep = pd::cut_by_segment(body, {{-dx, y}}, {{a0, y}});
             pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
         }
-
-        // 3.-4. Prescribed velocity on the left node row between the notches.
-        pd::Boundary<2> bc;
-        const pd::NodeSet impact = pd::select(body, pd::in_box<2>({{-1, y_low}}, {{dx, y_up}}), "impact zone");
-        bc.prescribe({pd::Prescribed::Kind::velocity, impact, 0, pd::TimeFunction::constant(v_imp)});
-
-        // 5. Integrate; tips every ~0.1 us: per notch, the damaged node farthest from the notch tip
-        //    among those connected to the notch band (steps <= 2.5 dx through nodes with phi >= 0.2,
-        //    right of the notch tip minus 2 delta, on the notch's side of the mid-line), excluding
-        //    the notch band itself (x < notch tip - dx).
-        const pd::Vec<2> tip_up{{a0, y_up}}, tip_low{{a0, y_low}};
-        pd::crack::Mask side_up(body.size()), side_low(body.size());
-        for (std::size_t i = 0; i < body.size(); ++i) {
-            const bool right = body.x.c[0][i] > a0 - 2 * delta;
-            side_up[i] = right && body.x.c[1][i] > H / 2, side_low[i] = right && body.x.c[1][i] < H / 2;
-        }
-        pd::crack::TipHistory h_up, h_low;
-        std::vector<double> phi, seeds;
-        auto crack_of = [&](const std::vector<double>& p, const pd::crack::Mask& side) {
-            pd::crack::Mask s(body.size());
-            for (std::size_t i = 0; i < body.size(); ++i) s[i] = seeds[i] >= threshold;
-            pd::crack::Mask c = pd::crack::connected_damage(bonds, p, s, 2.5 * dx, walk, side);
-            for (std::size_t i = 0; i < body.size(); ++i) c[i] = c[i] && body.x.c[0][i] >= a0 - dx;  // not the notch band
-            return c;
-        };
-        const long every = std::max(1L, std::lround(0.1e-6 / dt_max));
-        const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, bc, dt_max, safety, t_end, every,
-            [&](double t, std::vector<double> p, auto&) {
-                if (seeds.empty()) seeds = p;
-                h_up.push(t, pd::crack::tip_farthest(body.x, p, tip_up, threshold, crack_of(p, side_up)));
-                h_low.push(t, pd::crack::tip_farthest(body.x, p, tip_low, threshold, crack_of(p, side_low)));
-                phi = std::move(p);
-            }, {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) {
-                h_up.state(ar, "tips_upper"), h_low.state(ar, "tips_lower"), ar("phi", phi), ar("seeds", seeds);
+        pd::crack::TipRecorder up = recorder(tip_up, dx), low = recorder(tip_low, dx);
+        const pd::crack::RunInfo info = pd::crack::run_fracture_2d(body, bonds, mat, impact(body, dx), dt_max, safety, t_end, every,
+            [&](double t, std::vector<double> p, auto&) { up(t, body.x, bonds, p), low(t, body.x, bonds, std::move(p)); },
+            {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) {
+                up.state(ar, "upper."), low.state(ar, "lower.");
             }});
-
-        // 6. Metrics: angle of each crack from its damaged nodes beyond 2 delta of the notch tip.
-        auto angle = [&](const pd::Vec<2>& tip, const pd::crack::Mask& side) {
-            const pd::crack::Mask c = crack_of(phi, side);
-            std::vector<pd::Vec<2>> pts;
-            for (std::size_t i = 0; i < body.size(); ++i)
-                if (c[i] && phi[i] >= threshold && norm(body.x[i] - tip) > 2 * delta) pts.push_back(body.x[i]);
-            return pts.size() >= 2 ? pd::crack::principal_angle(pts) * deg : pd::crack::nan;
-        };
-        const double t_i = std::min(h_up.initiation_time(0.99 * dx), h_low.initiation_time(0.99 * dx));
-        results.push_back({dx, t_i, angle(tip_up, side_up), angle(tip_low, side_low), h_up.max_speed(window),
-                           h_low.max_speed(window), info.wall, info.dt, body.size(), bonds.size(), info.steps});
-        std::printf("dx %.3g mm: %zu nodes, %zu bonds, s0 %.4g, dt %.3g ns (crit %.3g), %ld steps, %.1f s\n", dx * 1e3, body.size(),
-                    bonds.size(), info.s0, info.dt * 1e9, info.dt_crit * 1e9, info.steps, info.wall);
-        if (q == 0) {
-            pd::io::CsvWriter th(out / "tip_history.csv", {"crack", "t_s", "x_m", "y_m", "distance_m"}, false);
-            pd::io::CsvWriter sp(out / "speed.csv", {"crack", "t_s", "v_m_per_s"});
-            for (const auto& [name, h] : {std::pair{"upper", &h_up}, std::pair{"lower", &h_low}}) {
-                for (std::size_t l = 0; l < h->size(); ++l) th.row({name, h->t[l], h->x[l][0], h->x[l][1], h->advance[l]});
-                for (const auto& s : h->speed(window)) sp.row({name, s.t, s.v});
-            }
-            pd::crack::write_damage_csv(out / "damage.csv", body.x, phi);
-            pd::crack::write_crack_path_csv(out / "crack_path.csv", body, phi);
-        }
+        results.push_back(measure(up, low, dx, info, body.size(), bonds.size()));
+        if (q == 0) write_tips(out, "", up, low, window, &body);
+    }
+    // The adaptive run (spec/002 sec. 7.3, V9): from the first dx, refined where the triggers fire.
+    Result adaptive{};  // and its grid updates:
+    pd::AdaptiveStats adaptive_stats;
+    if (adapt.on) {
+        const double dx = dxs.front(), dx_fine = dx / (1 << adapt.levels);
+        const auto up_cut = pd::segment_crossing({{-dx, y_up}}, {{a0, y_up}}), low_cut = pd::segment_crossing({{-dx, y_low}}, {{a0, y_low}});
+        const pd::AdaptiveScene<2> scene{.pmb = {}, .rho = 0, .s0 = {},
+                                         .cut = [&](const pd::Vec<2>& p, const pd::Vec<2>& q) { return up_cut(p, q) || low_cut(p, q); },
+                                         .boundary = [&](const pd::Body<2>& b) { return impact(b, dx); }, .no_fail = {}};
+        pd::crack::TipRecorder up = recorder(tip_up, dx), low = recorder(tip_low, dx);
+        const pd::crack::AdaptiveInfo info = pd::crack::run_fracture_adaptive<2>(
+            pd::RefinedGrid<2>(pd::box<2>({{0, 0}}, {{L, H}}, dx), m * dx), scene, adapt.options(pd::Refinement::delta, m, pd::parse_partial_volume(pv)),
+            mat, dt_max, safety, t_end, std::max(1L, std::lround(0.1e-6 / std::min(dt_max, dt_max * dx_fine / dx))),
+            [&](double t, const pd::AdaptiveFracture<2>& a) {
+                up(t, a.body().x, a.bonds(), a.damage(), &a.initial_damage()), low(t, a.body().x, a.bonds(), a.damage(), &a.initial_damage());
+                if (t >= t_end * (1 - 1e-12)) pd::io::write_refined_grid_vtu(run.file("adaptive_grid.vtu"), a.grid(), {{"damage", a.damage()}});
+            }, !quick);
+        adaptive = measure(up, low, dx_fine, info.run, info.nodes_final, 0);
+        adaptive_stats = info.stats;
+        write_tips(out, "_adaptive", up, low, window, nullptr);
     }
 
     // 7. Tables and verdict. Rayleigh speed by Viktorov's approximation c_R = c_s (0.862 + 1.14 nu)/(1 + nu).
@@ -176,6 +199,18 @@ static int run_case(int argc, char** argv)
         {"c_R_m_per_s", cR, cR_pub, relative_error(cR, cR_pub), "m/s"},  // ours nu = 1/4, published nu = 0.3 (spec/002 sec. 9)
         {"nodes", static_cast<double>(r.nodes), nan, nan, "-"},
         {"wall_time", r.wall, nan, nan, "s"}});
+    if (adapt.on) {  // error against run time (work_precision.hpp); published: +4,453 nodes (level 1), +6,902 (level 2)
+        auto point = [&](const std::string& name, const Result& x) {
+            return pd::crack::WorkPoint{name, x.dx, static_cast<double>(x.nodes), x.wall, {x.t_init, x.angle_up, x.angle_low, x.v_max}};
+        };
+        std::vector<pd::crack::WorkPoint> uniform;
+        for (const Result& u : results) uniform.push_back(point("uniform", u));
+        const std::vector<pd::crack::Quantity> qs{{"t_init", "s", "s", t_pub, t_pub}, {"crack_angle", "deg", "deg", angle_pub, angle_pub},
+                                                  {"crack_angle_lower", "deg", "deg", -angle_pub, -angle_pub}, {"v_max", "m_per_s", "m/s", v_pub, v_pub}};
+        const double nodes_pub = adapt.levels == 1 ? 5000 + 4453 : adapt.levels == 2 ? 5000 + 6902 : nan;
+        pd::crack::report_work_precision(run, qs, uniform, point("adaptive", adaptive), dxs.front() / (1 << adapt.levels), adaptive_stats,
+                                         std::abs(dxs.front() - 2e-3) < 1e-9 ? nodes_pub : nan, nan);
+    }
     run.print_summary(30);
 
     // Tolerances: both crack angles within 10 deg of +-68 (the published value comes from an
@@ -189,6 +224,7 @@ static int run_case(int argc, char** argv)
     run.property(r.v_max < cR && r.v_max_low < cR, "maximum tip speeds below the Rayleigh speed");
     run.property(r.v_max > cR / 2 && r.v_max_low > cR / 2, "maximum tip speeds above half the Rayleigh speed");
     run.check(relative_error(r.t_init, t_pub) <= 0.25, "initiation within 25 % of 24 us");
+    if (adapt.on) run.check(std::abs(adaptive.angle_up - angle_pub) <= 10, "adaptive run: upper crack angle within 10 deg of 68 deg");
     return run.finish("dx %.3g mm: initiation %.2f us (24), angle %.1f / %.1f deg (68), v_max %.0f m/s = %.0f %% c_R (71 %%)",
                       r.dx * 1e3, r.t_init * 1e6, r.angle_up, r.angle_low, r.v_max, 100 * r.v_max / cR);
 }

@@ -5,47 +5,25 @@
 // rectangle broken); step traction 6 MPa on the top and bottom node rows (b = sigma/dx, spec/002
 // sec. 3.5 [AMBIGUOUS]); free faces. E 65 GPa, rho 2235, Gc 204 J/m^2, m = 3, dt = 50 ns, 70 us.
 // Reference: spec/002 V8 is qualitative: the crack branches; the source ran adaptive refinement
-// (12,000 -> 26,644 nodes). This library has no adaptive refinement: uniform grids only.
+// (12,000 -> 26,644 nodes: energy trigger W >= 0.7 W_max from 7.5 us, one level). --adaptive runs
+// that model (time/adaptive_refinement.hpp) from the --dx grid instead of the uniform one.
 // Measured: tip (farthest node with phi >= 0.35 connected to the pre-crack, crack_metrics.hpp) on
 // the mid-thickness node layer and on both surface layers; initiation, branching (crack_metrics rule
 // applied to the mid layer), mean and maximum speed over 2 us windows against the Rayleigh speed.
 // Run: crack_branching_3d [--dx 1e-3] [--sigma 6e6] [--t-end 70e-6] [--quick] [--check] [--out DIR]
+//   [--adaptive [--levels 1] [--triggers energy|damage|both] [--t-start 7.5e-6] [--zone-margin 0]]
 // Writes: summary.csv, tip_history.csv (mid and surface tips), speed.csv, damage.csv (phi > 0),
 // damage.vtu (final phi, ParaView), params.csv.
 #include "problems/common/crack/crack_run.hpp"
+#include "problems/common/crack/slab_tips.hpp"
+#include "problems/common/crack/work_precision.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
+#include "pd/io/refined_grid_vtu.hpp"
 #include "pd/io/vtu.hpp"
 
 #include <cstdio>
-
-namespace {
-
-// One node layer z = const of the 3D lattice as a 2D point set, for the 2D crack metrics.
-struct Layer {
-    std::vector<int> node;  // 3D node index of each layer point
-    pd::Field<2> x;         // in-plane reference positions [m]
-    template <class T>
-    std::vector<T> take(const std::vector<T>& f) const
-    {
-        std::vector<T> r(node.size());
-        for (std::size_t l = 0; l < node.size(); ++l) r[l] = f[node[l]];
-        return r;
-    }
-};
-
-Layer layer(const pd::Body<3>& body, long k)
-{
-    Layer L;
-    for (std::size_t i = 0; i < body.size(); ++i)
-        if (std::lround(std::floor(body.x.c[2][i] / body.dx)) == k) L.node.push_back(static_cast<int>(i));
-    L.x.resize(L.node.size());
-    for (std::size_t l = 0; l < L.node.size(); ++l) L.x.set(l, {{body.x.c[0][L.node[l]], body.x.c[1][L.node[l]]}});
-    return L;
-}
-
-}  // namespace
 
 static int run_case(int argc, char** argv)
 {
@@ -70,6 +48,7 @@ static int run_case(int argc, char** argv)
     double& window = opt.add("window", 2e-6, "crack-speed window (spec/002: 2 us)", "s");
     double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
+    const pd::crack::AdaptiveCli adapt(opt, 7.5e-6, "energy", "spec/002 V8: energy trigger from 7.5 us");
     for (const char* o : {"E", "rho", "Gc", "sigma", "length", "height", "thickness", "crack", "dx", "dt", "dt-factor", "t-end", "window"})
         opt.require_positive(o);
     opt.require_at_least("m", 1);
@@ -82,63 +61,66 @@ static int run_case(int argc, char** argv)
     if (!(a0 < L)) opt.fail("option --crack must be shorter than --length");
     if (std::lround(H / dx) < 2 * m + 2) opt.fail("option --dx: dx too coarse for the plate height");
     if (std::lround(T / dx) < 1) opt.fail("option --dx: dx larger than the plate thickness");
+    adapt.validate(opt);
     run.quick_threads = 1;  // the quick grid is too small to gain from threads
     run.start();
     const std::filesystem::path& out = run.out();
     const pd::crack::Material3D mat{E, rho, Gc};
     const double nan = pd::crack::nan, delta = m * dx;
 
-    // 2. Discretisation: one node per dx cube; pre-crack = the rectangle y = H/2, x <= a0, all z, as cut bonds.
+    // 2.-4. One node per dx cube; pre-crack = the rectangle y = H/2, x <= a0, all z, as cut bonds; step
+    //    traction on the top and bottom node rows (all layers); free faces.
     const pd::Body<3> body = pd::box<3>({{0, 0, 0}}, {{L, H, T}}, dx);
-    pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
-    const auto keep = pd::cut_by_rectangle(body, {{-dx, H / 2, -dx}}, {{a0 + dx, 0, 0}}, {{0, 0, T + 2 * dx}});
-    pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
+    const pd::Vec<3> corner{{-dx, H / 2, -dx}}, e1{{a0 + dx, 0, 0}}, e2{{0, 0, T + 2 * dx}};
+    auto loads = [&](const pd::Body<3>& b) {
+        pd::Boundary<3> bc;
+        bc.traction(pd::select(b, pd::in_box<3>({{-1, H - dx, -1}}, {{1, 2 * H, 1}}), "top row"), {{0, sigma, 0}}, dx);
+        bc.traction(pd::select(b, pd::in_box<3>({{-1, -H, -1}}, {{1, dx, 1}}), "bottom row"), {{0, -sigma, 0}}, dx);
+        return bc;
+    };
     const long nz = std::lround(T / dx);
-    const Layer mid = layer(body, nz / 2), bottom = layer(body, 0), top = layer(body, nz - 1);
+    pd::crack::SlabTips obs{.origin = {{0, H / 2}}, .dir = {{1, 0}}, .threshold = threshold, .walk = walk, .step = 2.5 * dx, .h0 = dx, .y_mid = H / 2,
+                 .half_band = H / 2 - delta, .nz = nz, .tip_mid = {}, .tip_bot = {}, .tip_top = {}, .x = {}, .phi = {}, .phi0 = {},
+                 .crack = {}, .u_max = 0};
+    const long every = std::max(1L, std::lround(0.1e-6 / std::min(dt_max, 0.5 * dx / (adapt.on ? 1 << adapt.levels : 1) / 5000)));  // ~0.1 us
+    pd::crack::RunInfo info;
+    std::size_t nodes = body.size(), n_bonds = 0;
+    pd::AdaptiveStats st;
+    if (!adapt.on) {
+        // 5. Integrate (uniform grid).
+        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
+        const auto keep = pd::cut_by_rectangle(body, corner, e1, e2);
+        pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
+        n_bonds = bonds.size();
+        info = pd::crack::run_fracture<3>(body, bonds, mat, loads(body), dt_max, safety, t_end, every,
+            [&](double t, std::vector<double> p, auto& sim) { obs(t, body.x, bonds, std::move(p), nullptr, sim.u); },
+            {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) { obs.state(ar); }});
+    } else {
+        // 5. Integrate, refining the grid where the triggers fire (spec/002 sec. 4).
+        const pd::AdaptiveScene<3> scene{.pmb = {}, .rho = 0, .s0 = {}, .cut = pd::rectangle_crossing(corner, e1, e2), .boundary = loads, .no_fail = {}};
+        const pd::crack::AdaptiveInfo a = pd::crack::run_fracture_adaptive<3>(pd::RefinedGrid<3>(body, delta), scene,
+            adapt.options(pd::Refinement::delta, m, pd::parse_partial_volume(pv)), mat, dt_max, safety, t_end, every,
+            [&](double t, const pd::AdaptiveFracture<3>& f) {
+                obs(t, f.body().x, f.bonds(), f.damage(), &f.initial_damage(), f.sim().u), n_bonds = f.bonds().size();
+                if (t >= t_end * (1 - 1e-12)) pd::io::write_refined_grid_vtu(run.file("adaptive_grid.vtu"), f.grid(), {{"damage", f.damage()}});
+            }, !quick);
+        info = a.run, nodes = a.nodes_final, st = a.stats;
+    }
+    const std::vector<double>& phi = obs.phi;
+    const pd::Field<3>& x = obs.x;
+    const double dx_fine = adapt.on ? dx / (1 << adapt.levels) : dx;
+    const pd::crack::Layer mid = pd::crack::layer(x, dx, nz / 2), bottom = pd::crack::layer(x, dx, 0);
 
-    // 3.-4. Step traction on the top and bottom node rows (all layers); free faces.
-    pd::Boundary<3> bc;
-    bc.traction(pd::select(body, pd::in_box<3>({{-1, H - dx, -1}}, {{1, 2 * H, 1}}), "top row"), {{0, sigma, 0}}, dx);
-    bc.traction(pd::select(body, pd::in_box<3>({{-1, -H, -1}}, {{1, dx, 1}}), "bottom row"), {{0, -sigma, 0}}, dx);
-    pd::crack::Mask inner(body.size(), 0);  // tips and branches away from the loaded rows
-    for (std::size_t i = 0; i < body.size(); ++i) inner[i] = std::abs(body.x.c[1][i] - H / 2) < H / 2 - delta;
-
-    // 5. Integrate; every ~0.1 us the crack = damaged nodes connected in 3D to the pre-crack band
-    //    (steps up to 2.5 dx through nodes with phi >= walk), its tip taken on each node layer.
-    const pd::Vec<2> origin{{0, H / 2}}, dir{{1, 0}};
-    pd::crack::TipHistory tip_mid, tip_bot, tip_top;
-    std::vector<double> phi, seeds;
-    auto connected = [&](const std::vector<double>& p) {
-        pd::crack::Mask s(body.size());
-        for (std::size_t i = 0; i < body.size(); ++i) s[i] = seeds[i] >= threshold;
-        return pd::crack::connected_damage(bonds, p, s, 2.5 * dx, walk, inner);
-    };
-    auto tip_on = [&](const Layer& ly, const std::vector<double>& p, const pd::crack::Mask& c) {
-        return pd::crack::tip_along(ly.x, ly.take(p), origin, dir, threshold, ly.take(c));
-    };
-    double u_max = 0;  // largest displacement at the end [m]
-    const long every = std::max(1L, std::lround(0.1e-6 / std::min(dt_max, 0.5 * dx / 5000)));  // ~0.1 us
-    const pd::crack::RunInfo info = pd::crack::run_fracture<3>(body, bonds, mat, bc, dt_max, safety, t_end, every,
-        [&](double t, std::vector<double> p, auto& sim) {
-            if (seeds.empty()) seeds = p;  // the pre-crack band at t = 0
-            const pd::crack::Mask c = connected(p);
-            tip_mid.push(t, tip_on(mid, p, c)), tip_bot.push(t, tip_on(bottom, p, c)), tip_top.push(t, tip_on(top, p, c));
-            phi = std::move(p);
-            u_max = 0;
-            for (std::size_t i = 0; i < body.size(); ++i) u_max = std::max(u_max, norm(sim.u[i]));
-        }, {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) {
-            tip_mid.state(ar, "tips_mid"), tip_bot.state(ar, "tips_bottom"), tip_top.state(ar, "tips_top");
-            ar("phi", phi), ar("seeds", seeds), ar("u_max", u_max);
-        }});
-
-    // 6. Metrics on the mid layer (crack_metrics rule: confirm over 4 mm, fit over 10 mm) and, for
-    //    comparison, on the bottom surface layer; surface-mid tip gap over the whole history.
-    const pd::crack::BranchRule rule{.threshold = threshold, .confirm = std::max(2, static_cast<int>(std::lround(4e-3 / dx))),
-                                     .fit = std::max(3, static_cast<int>(std::lround(10e-3 / dx)))};
-    const pd::crack::Mask crack = connected(phi);
-    auto branching = [&](const Layer& ly, const pd::crack::TipHistory& th) {
+    // 6. Metrics on the mid layer (crack_metrics rule: confirm over 4 mm, fit over 10 mm, bins of the
+    //    finest dx) and, for comparison, on the bottom surface layer; surface-mid tip gap over the history.
+    const pd::crack::BranchRule rule{.threshold = threshold, .confirm = std::max(2, static_cast<int>(std::lround(4e-3 / dx_fine))),
+                                     .fit = std::max(3, static_cast<int>(std::lround(10e-3 / dx_fine)))};
+    const pd::crack::Mask& crack = obs.crack;
+    const pd::crack::TipHistory &tip_mid = obs.tip_mid, &tip_bot = obs.tip_bot, &tip_top = obs.tip_top;
+    const pd::Vec<2> origin = obs.origin, dir = obs.dir;
+    auto branching = [&](const pd::crack::Layer& ly, const pd::crack::TipHistory& th) {
         const double s0 = th.size() ? th.advance.front() : nan;
-        return pd::crack::find_branching(ly.x, ly.take(phi), origin, dir, dx, s0, rule, ly.take(crack));
+        return pd::crack::find_branching(ly.x, ly.take(phi), origin, dir, dx_fine, s0, rule, ly.take(crack));
     };
     const pd::crack::Branching br = branching(mid, tip_mid), br_surf = branching(bottom, tip_bot);
     const double t_init = tip_mid.initiation_time(0.99 * dx);
@@ -155,13 +137,13 @@ static int run_case(int argc, char** argv)
                 if (s->t[q] == tip_mid.t[l]) gap = std::max(gap, std::abs(s->advance[q] - a_mid)), lead += a_mid - s->advance[q], ++pairs;
     }
     lead = pairs ? lead / static_cast<double>(pairs) : nan;
-    auto damaged = [&](const Layer& ly) {
+    auto damaged = [&](const pd::crack::Layer& ly) {
         double n = 0;
         for (int i : ly.node) n += phi[i] >= threshold;
         return n;
     };
-    std::printf("%zu nodes (%ld layers, thickness %.3g mm), %zu bonds, c %.4g N/m^6, s0 %.4g, dt %.3g ns (crit %.3g), %ld steps, %ld bonds broken, %.1f s\n",
-                body.size(), nz, nz * dx * 1e3, bonds.size(), info.c, info.s0, info.dt * 1e9, info.dt_crit * 1e9, info.steps, info.broken, info.wall);
+    std::printf("%zu nodes (%ld layers, thickness %.3g mm), %zu bonds, dt %.3g ns (crit %.3g), %ld steps, %ld bonds broken, %.1f s\n",
+                nodes, nz, nz * dx * 1e3, n_bonds, info.dt * 1e9, info.dt_crit * 1e9, info.steps, info.broken, info.wall);
 
     // 7. CSVs, table, checks.
     pd::io::CsvWriter th(out / "tip_history.csv", {"t_s", "x_mid_m", "y_mid_m", "advance_mid_m", "advance_bottom_m", "advance_top_m"}, false);
@@ -176,10 +158,10 @@ static int run_case(int argc, char** argv)
     pd::io::CsvWriter sp(out / "speed.csv", {"t_s", "v_m_per_s"});
     for (const auto& s : tip_mid.speed(window)) sp.row({s.t, s.v});
     pd::io::CsvWriter dm(out / "damage.csv", {"x_m", "y_m", "z_m", "phi"}, false);
-    for (std::size_t i = 0; i < body.size(); ++i)
-        if (phi[i] > 0) dm.row({body.x.c[0][i], body.x.c[1][i], body.x.c[2][i], phi[i]});
+    for (std::size_t i = 0; i < phi.size(); ++i)
+        if (phi[i] > 0) dm.row({x.c[0][i], x.c[1][i], x.c[2][i], phi[i]});
     pd::io::VtuWriter vtu(out / "damage.vtu");
-    vtu.points(body.x.c[0], body.x.c[1], body.x.c[2]);
+    vtu.points(x.c[0], x.c[1], x.c[2]);
     vtu.scalar("damage", phi);
     vtu.write();
     using pd::io::relative_error;
@@ -187,8 +169,9 @@ static int run_case(int argc, char** argv)
     const double n_coarse = published_grid ? 12000 : nan, n_refined = 26644;  // spec/002 V8: uniform 1 mm grid; after refinement [-]
     run.summary_observed({
         {"nodes", static_cast<double>(body.size()), n_coarse, relative_error(static_cast<double>(body.size()), n_coarse), "-"},
-        pd::io::not_measured("nodes_refined_source", n_refined, "-"),  // no adaptive refinement in this library yet
-        {"bonds", static_cast<double>(bonds.size()), nan, nan, "-"},
+        adapt.on ? pd::io::SummaryRow{"nodes_final", static_cast<double>(nodes), n_refined, relative_error(static_cast<double>(nodes), n_refined), "-"}
+                 : pd::io::not_measured("nodes_final", n_refined, "-"),  // with --adaptive
+        {"bonds", static_cast<double>(n_bonds), nan, nan, "-"},
         {"branched", br.found ? 1.0 : 0.0, 1, br.found ? 0.0 : 1.0, "-"},  // source: branching captured (qualitative)
         {"t_init_s", t_init, nan, nan, "s"},
         {"t_branch_s", t_branch, nan, nan, "s"},
@@ -206,6 +189,7 @@ static int run_case(int argc, char** argv)
         {"damaged_nodes_surface", damaged(bottom), nan, nan, "-"},
         {"steps", static_cast<double>(info.steps), nan, nan, "-"},
         {"wall_time", info.wall, nan, nan, "s"}});
+    if (adapt.on) run.summary({{"grid_updates", static_cast<double>(st.updates), nan, nan, "-"}, {"wall_adaptive_updates", st.wall_update, nan, nan, "s"}});
     run.print_summary(22);
 
     // The source's result is qualitative (a branch forms); the tip may not outrun the Rayleigh
@@ -214,8 +198,8 @@ static int run_case(int argc, char** argv)
     run.property(!std::isnan(t_init), "the crack starts to run");
     run.property(br.found, "a branch forms on the mid layer (crack_metrics rule)");
     run.property(v_max < cR, "maximum tip speed below the Rayleigh speed");
-    run.property(std::isfinite(u_max) && u_max < 0.1 * H, "stable run (largest displacement below 0.1 H)");
-    return run.finish("%zu nodes, dx %.3g mm: branch at x = %.1f mm, t = %.2f us; v_max %.0f m/s (c_R %.0f); %.1f s", body.size(),
+    run.property(std::isfinite(obs.u_max) && obs.u_max < 0.1 * H, "stable run (largest displacement below 0.1 H)");
+    return run.finish("%zu nodes, dx %.3g mm: branch at x = %.1f mm, t = %.2f us; v_max %.0f m/s (c_R %.0f); %.1f s", nodes,
                       dx * 1e3, br.found ? br.point[0] * 1e3 : nan, t_branch * 1e6, v_max, cR, info.wall);
 }
 

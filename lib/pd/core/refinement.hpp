@@ -13,7 +13,9 @@
 //   refine_around(ids, levels, rule): Alg. A.3 of the triggers, around level-0 nodes `ids`: level l
 //     splits the active level l-1 nodes within their horizon of the level l-1 descendants of ids (so
 //     no coarser node sees one of them, sec. 4.5); nodes split before are left as they are. Returns
-//     how many nodes it split (0: the zone was refined already).
+//     how many nodes it split (0: the zone was refined already). margin > 0 widens each zone by that
+//     many cells of its level (a look-ahead of ours: fewer, larger updates; 0 is the source's rule).
+//   needs_refinement(ids, levels): whether refine_around without margin would split anything.
 //   ancestor(node): the level-0 node it descends from (the triggers work on level-0 ids, V6f).
 //   interface_horizon(m): the interface nodes of the refined region take delta = m d_min, d_min the
 //     distance to the nearest coarser node (sec. 4.6, the fix of the partial cells PA-PDLAMMPS drops;
@@ -108,6 +110,22 @@ struct RefinedGrid {
         }
     }
 
+    // True when refine_around(ids, levels) with no margin would split a node (its zones are not all
+    // split yet); nothing is split.
+    bool needs_refinement(const std::vector<int>& ids, int levels) const
+    {
+        std::vector<int> nodes(ids);
+        for (int l = 1; l <= levels && !nodes.empty(); ++l) {
+            for (int i : same_level_within(nodes))
+                if (active[i]) return true;
+            std::vector<int> next;
+            for (int q : nodes)
+                for (int c = 0; c < children; ++c) next.push_back(first_child[q] + c);
+            nodes = std::move(next);
+        }
+        return false;
+    }
+
     // The nodes to split around `nodes` (header), each once, ascending.
     std::vector<int> visibility_zone(const std::vector<int>& nodes) const
     {
@@ -121,7 +139,8 @@ struct RefinedGrid {
     }
 
     // Alg. A.3 around level-0 nodes (header); m_level(l) for delta_m.
-    int refine_around(const std::vector<int>& ids, int levels, Refinement rule, const std::function<double(int)>& m_level = {})
+    int refine_around(const std::vector<int>& ids, int levels, Refinement rule, const std::function<double(int)>& m_level = {},
+                      double margin = 0)
     {
         std::vector<int> nodes;  // the level l-1 descendants of ids
         for (int q : ids) {
@@ -132,7 +151,7 @@ struct RefinedGrid {
         int split_count = 0;
         for (int l = 1; l <= levels && !nodes.empty(); ++l) {
             std::vector<int> todo;
-            for (int i : same_level_within(nodes))
+            for (int i : same_level_within(nodes, margin))
                 if (active[i]) todo.push_back(i);
             split(todo, rule, rule == Refinement::delta_m ? m_level(l) : 0.0);
             split_count += static_cast<int>(todo.size());
@@ -200,13 +219,14 @@ private:
         volume.push_back(v), h.push_back(side), delta.push_back(hor), nominal.push_back(hor), level.push_back(lev), parent.push_back(par);
         first_child.push_back(-1), active.push_back(1);
     }
-    // The nodes (active or split) of the level of each given node within its nominal horizon, ascending.
-    std::vector<int> same_level_within(const std::vector<int>& nodes) const
+    // The nodes (active or split) of the level of each given node within its nominal horizon plus
+    // margin cells, ascending.
+    std::vector<int> same_level_within(const std::vector<int>& nodes, double margin = 0) const
     {
         std::vector<std::uint8_t> pick(size(), 0), levels;
         double reach = 0;
         for (int q : nodes) {
-            pick[q] = 1, reach = std::max(reach, nominal[q]);
+            pick[q] = 1, reach = std::max(reach, nominal[q] + margin * h[q]);
             if (static_cast<std::size_t>(level[q]) >= levels.size()) levels.resize(level[q] + 1, 0);
             levels[level[q]] = 1;
         }
@@ -222,7 +242,7 @@ private:
             for (int q : nodes)
                 bins.near(x[q], [&](int s) {
                     const int j = index[s];
-                    if (level[j] == level[q] && norm(x[j] - x[q]) <= nominal[q] * (1 + 1e-10)) pick[j] = 1;
+                    if (level[j] == level[q] && norm(x[j] - x[q]) <= (nominal[q] + margin * h[q]) * (1 + 1e-10)) pick[j] = 1;
                 });
         }
         std::vector<int> out;

@@ -38,21 +38,27 @@ inline std::function<bool(int, int)> cut_by_segment(const Body<2>& body, Vec<2> 
 
 // 3D: rectangle {corner + s e1 + t e2, s, t in [0, 1]}. A bond that touches it, edges included (within
 // touch_roundoff, as in 2D), counts as cut; a bond lying in its plane is kept.
-inline std::function<bool(int, int)> cut_by_rectangle(const Body<3>& body, Vec<3> corner, Vec<3> e1, Vec<3> e2)
+// The crossing test on the end points p, q of a bond (true: the bond crosses the rectangle).
+inline std::function<bool(const Vec<3>&, const Vec<3>&)> rectangle_crossing(Vec<3> corner, Vec<3> e1, Vec<3> e2)
 {
     const Vec<3> n{{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]}};
-    return [&body, corner, e1, e2, n](int i, int j) {
-        const Vec<3> p = body.x[std::min(i, j)], q = body.x[std::max(i, j)];  // same arithmetic for i-j and j-i
+    return [corner, e1, e2, n](const Vec<3>& p, const Vec<3>& q) {
         const double tol = touch_roundoff * norm(n) * norm(q - p);  // |d| <= tol counts as on the plane
         double dp = dot(p - corner, n), dq = dot(q - corner, n);
         if (std::abs(dp) <= tol) dp = 0;
         if (std::abs(dq) <= tol) dq = 0;
-        if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0) || dp == dq) return true;  // same side or in the plane
+        if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0) || dp == dq) return false;  // same side or in the plane
         const Vec<3> hit = p + (dp / (dp - dq)) * (q - p);
         const Vec<3> r = hit - corner;
         const double s = dot(r, e1) / dot(e1, e1), t = dot(r, e2) / dot(e2, e2);
         const double lo = -touch_roundoff, hi = 1 + touch_roundoff;  // edges touched within round-off count
-        return !(s >= lo && s <= hi && t >= lo && t <= hi);
+        return s >= lo && s <= hi && t >= lo && t <= hi;
+    };
+}
+inline std::function<bool(int, int)> cut_by_rectangle(const Body<3>& body, Vec<3> corner, Vec<3> e1, Vec<3> e2)
+{
+    return [&body, crosses = rectangle_crossing(corner, e1, e2)](int i, int j) {
+        return !crosses(body.x[std::min(i, j)], body.x[std::max(i, j)]);  // same arithmetic for i-j and j-i
     };
 }
 

@@ -59,6 +59,7 @@ struct AdaptiveOptions {
     long energy_every = 1;               // steps between energy-trigger checks (>= 1)
     bool damage_trigger = true;          // the damage trigger with its roll-back
     double interface_m = 3;              // interface horizon m d_min; 0: none
+    double zone_margin = 0;              // cells added to each refinement zone (ours; 0: the source's zone)
     PartialVolume partial_volume = PartialVolume::pa_pdlammps;
 };
 
@@ -181,14 +182,17 @@ private:
     }
 
     // refine_around for the level-0 nodes not refined around before (it is idempotent: the grid only
-    // gets finer), so a trigger that fires again where the grid is final costs no search.
+    // gets finer), so a trigger that fires again where the grid is final costs no search. With a zone
+    // margin, the zones are widened only when the source's zones need a split: the margin is then a
+    // look-ahead that the next triggers find refined already.
     int refine_around(const std::vector<int>& level0)
     {
         done_.resize(stats_.nodes_initial, 0);
         std::vector<int> todo;
         for (int q : unique(level0))
             if (!done_.at(q)) todo.push_back(q), done_[q] = 1;
-        return todo.empty() ? 0 : grid_.refine_around(todo, opt_.levels, opt_.rule, opt_.m_level);
+        if (todo.empty() || (opt_.zone_margin > 0 && !grid_.needs_refinement(todo, opt_.levels))) return 0;
+        return grid_.refine_around(todo, opt_.levels, opt_.rule, opt_.m_level, opt_.zone_margin);
     }
 
     State save(bool with_bonds) const

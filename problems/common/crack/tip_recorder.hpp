@@ -1,7 +1,8 @@
 // The crack tip of a 2D fracture run over time, on any grid the run has at the sample (uniform, or
-// refined during the run: time/adaptive_refinement.hpp): the farthest node along dir with phi >=
-// threshold among those connected to the pre-crack band (crack_metrics.hpp connected_damage: steps
-// up to `step` through nodes with phi >= walk), away from the loaded rows (|y - y_mid| < half_band).
+// refined during the run: time/adaptive_refinement.hpp): the farthest node along dir (dir = 0: from
+// origin) with phi >= threshold among those connected to the pre-crack band (crack_metrics.hpp
+// connected_damage: steps up to `step` through nodes with phi >= walk inside `region`, e.g. away
+// from the loaded rows), and among those inside `beyond` (e.g. not the notch band itself).
 // The pre-crack band: the nodes whose initial damage phi0 (the pre-crack's share of the family) is at
 // least the threshold; phi0 is the damage of the first sample when the run does not give it.
 // Keeps the last sample (grid, phi, connected crack) for the final metrics; write() saves the history.
@@ -11,6 +12,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,7 +24,8 @@ struct TipRecorder {
     double threshold = tip_threshold;  // phi of a tip node [-]
     double walk = 0.2;                 // phi of the nodes the connection walks through [-]
     double step = 0;                   // longest bond walked [m]
-    double y_mid = 0, half_band = 0;   // tips only where |y - y_mid| < half_band [m]
+    std::function<bool(const Vec<2>&)> region;  // where the walk goes (empty: everywhere)
+    std::function<bool(const Vec<2>&)> beyond;  // where a connected node counts as crack (empty: everywhere)
 
     TipHistory tips;
     Field<2> x;                        // the last sample's nodes [m]
@@ -34,11 +37,12 @@ struct TipRecorder {
     {
         if (initial) phi0 = *initial;
         else if (phi0.empty()) phi0 = p;
-        Mask seeds(p.size()), inner(p.size());
-        for (std::size_t i = 0; i < p.size(); ++i)
-            seeds[i] = phi0[i] >= threshold, inner[i] = std::abs(nodes.c[1][i] - y_mid) < half_band;
+        Mask seeds(p.size()), inner(p.size(), 1);
+        for (std::size_t i = 0; i < p.size(); ++i) seeds[i] = phi0[i] >= threshold, inner[i] = !region || region(nodes[i]);
         crack = connected_damage(bonds, p, seeds, step, walk, inner);
-        tips.push(t, tip_along(nodes, p, origin, dir, threshold, crack));
+        if (beyond)
+            for (std::size_t i = 0; i < p.size(); ++i) crack[i] = crack[i] && beyond(nodes[i]);
+        tips.push(t, dir[0] == 0 && dir[1] == 0 ? tip_farthest(nodes, p, origin, threshold, crack) : tip_along(nodes, p, origin, dir, threshold, crack));
         x = nodes, phi = std::move(p);
     }
 
@@ -54,10 +58,10 @@ struct TipRecorder {
         if (lattice) write_crack_path_csv(out / ("crack_path" + suffix + ".csv"), *lattice, phi);
     }
 
-    // Its part of a checkpoint.
-    void state(StateArchive& ar)
+    // Its part of a checkpoint (entries named with `prefix`: one recorder per crack).
+    void state(StateArchive& ar, const std::string& prefix = "")
     {
-        tips.state(ar, "tips"), ar("x", x), ar("phi", phi), ar("seeds", phi0), ar("crack", crack);
+        tips.state(ar, prefix + "tips"), ar(prefix + "x", x), ar(prefix + "phi", phi), ar(prefix + "seeds", phi0), ar(prefix + "crack", crack);
     }
 };
 

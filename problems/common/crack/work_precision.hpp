@@ -86,7 +86,7 @@ inline void report_work_precision(io::Case& run, const std::vector<Quantity>& q,
 }
 
 // The options of an adaptive run, shared by the drivers: --adaptive, --levels, --t-start, --triggers,
-// --energy-fraction, --energy-every (time/adaptive_refinement.hpp), each with the case's default.
+// --energy-fraction, --energy-every, --zone-margin (time/adaptive_refinement.hpp), each with the case's default.
 struct AdaptiveCli {
     bool& on;
     int& levels;
@@ -94,6 +94,7 @@ struct AdaptiveCli {
     std::string& triggers;
     double& energy_fraction;
     int& energy_every;
+    double& zone_margin;
 
     AdaptiveCli(io::Options& opt, double t_start_default, const std::string& triggers_default, const std::string& source)
         : on(opt.add_flag("adaptive", "also run adaptive refinement from the first (coarse) grid (" + source + ")")),
@@ -101,8 +102,10 @@ struct AdaptiveCli {
           t_start(opt.add("t-start", t_start_default, "adaptive: time the triggers start (" + source + ")", "s")),
           triggers(opt.add_string("triggers", triggers_default, "adaptive: triggers (" + source + ")", {"energy", "damage", "both"})),
           energy_fraction(opt.add("energy-fraction", 0.7, "adaptive: energy trigger W >= this x W_max")),
-          energy_every(opt.add_int("energy-every", 1, "adaptive: steps between energy-trigger checks"))
+          energy_every(opt.add_int("energy-every", 1, "adaptive: steps between energy-trigger checks")),
+          zone_margin(opt.add("zone-margin", 0, "adaptive: cells added to each refinement zone (ours; 0: the source's zone)"))
     {
+        opt.require_at_least("zone-margin", 0);
         opt.require_at_least("levels", 1);
         opt.require_at_least("energy-every", 1);
         opt.require_range("energy-fraction", 0, 1, false, true);
@@ -116,7 +119,7 @@ struct AdaptiveCli {
     AdaptiveOptions options(Refinement rule, double interface_m, PartialVolume pv) const
     {
         return {.levels = levels, .rule = rule, .m_level = {}, .t_start = t_start, .energy_fraction = triggers == "damage" ? 0.0 : energy_fraction,
-                .energy_every = energy_every, .damage_trigger = triggers != "energy", .interface_m = interface_m, .partial_volume = pv};
+                .energy_every = energy_every, .damage_trigger = triggers != "energy", .interface_m = interface_m, .zone_margin = zone_margin, .partial_volume = pv};
     }
 };
 
