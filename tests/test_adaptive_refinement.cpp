@@ -4,6 +4,7 @@
 // (Alg. A.3) and the per-horizon critical stretch of dual families. References: the pre-crack geometry
 // and linear fields written out in the tests; the same run without the damage trigger, which does
 // break level-0 bonds (so the V6d check can fail); s0(delta) of eq. 2.15b.
+#include "pd/core/parallel.hpp"
 #include "pd/core/refinement.hpp"
 #include "pd/core/variable_horizon.hpp"
 #include "pd/damage/precrack.hpp"
@@ -12,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 namespace {
 constexpr double h0 = 0.5e-3, L = 20e-3, H = 10e-3, m = 3;  // soda-lime plate of 40 x 20 cells
@@ -198,4 +200,20 @@ TEST(AdaptiveRefinement, PairCriticalStretchFollowsTheHorizons)
             }
         }
     EXPECT_GT(mixed, 0);
+}
+
+// The run does not depend on the thread count: the same grid updates, nodes, broken bonds and
+// displacements, bit for bit, with one and two threads.
+TEST(AdaptiveRefinement, RunIsTheSameForAnyThreadCount)
+{
+    auto crack_run = [](int threads) {
+        pd::set_threads(threads);
+        pd::AdaptiveFracture<2> run(grid(), scene(60e6), {.levels = 1, .m_level = {}, .energy_fraction = 0.7});
+        run_crack(run, 1, 300);
+        return std::tuple{run.stats().updates, run.body().size(), run.broken_bonds(), run.sim().u.c[0], run.sim().u.c[1]};
+    };
+    const auto one = crack_run(1), two = crack_run(2);
+    pd::set_threads(0);
+    EXPECT_GT(std::get<0>(one), 1);
+    EXPECT_EQ(one, two);
 }

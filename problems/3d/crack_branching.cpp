@@ -11,9 +11,11 @@
 // the mid-thickness node layer and on both surface layers; initiation, branching (crack_metrics rule
 // applied to the mid layer), mean and maximum speed over 2 us windows against the Rayleigh speed.
 // Run: crack_branching_3d [--dx 1e-3] [--sigma 6e6] [--t-end 70e-6] [--quick] [--check] [--out DIR]
-//   [--adaptive [--levels 1] [--triggers energy|damage|both] [--t-start 7.5e-6] [--zone-margin 0]]
+//   [--adaptive [--compare-fine] [--levels 1] [--triggers energy|damage|both] [--t-start 7.5e-6] [--zone-margin 0]]
+// With --compare-fine the uniform grid of the finest spacing runs first in the same process: its branch
+// point and time, wall time and the adaptive run's speed-up against it are summary rows.
 // Writes: summary.csv, tip_history.csv (mid and surface tips), speed.csv, damage.csv (phi > 0),
-// damage.vtu (final phi, ParaView), params.csv.
+// damage.vtu (final phi, ParaView), params.csv; with --adaptive adaptive_grid.vtu (levels and damage).
 #include "problems/common/crack/crack_run.hpp"
 #include "problems/common/crack/slab_tips.hpp"
 #include "problems/common/crack/work_precision.hpp"
@@ -28,7 +30,7 @@
 static int run_case(int argc, char** argv)
 {
     // 1. Options (SI; defaults = spec/002 V8), echoed and saved.
-    pd::io::Case run("crack_branching_3d", "Dynamic crack branching in a pre-cracked Duran 50 plate (3D PMB, uniform grid).",
+    pd::io::Case run("crack_branching_3d", "Dynamic crack branching in a pre-cracked Duran 50 plate (3D PMB, uniform or adaptive grid).",
                      "reports/3d/crack_branching", "output folder (CSV files, params.csv, damage.vtu)");
     pd::io::Options& opt = run.opt;
     double& E = opt.add("E", 65e9, "Young's modulus", "Pa");
@@ -49,6 +51,7 @@ static int run_case(int argc, char** argv)
     double& threshold = opt.add("threshold", pd::crack::tip_threshold, "damage of a tip node");
     double& walk = opt.add("walk-threshold", 0.2, "damage of the nodes that connect a crack to its pre-crack");
     const pd::crack::AdaptiveCli adapt(opt, 7.5e-6, "energy", "spec/002 V8: energy trigger from 7.5 us");
+    bool& compare_fine = opt.add_flag("compare-fine", "with --adaptive: also run the uniform grid of the finest spacing, in this process");
     for (const char* o : {"E", "rho", "Gc", "sigma", "length", "height", "thickness", "crack", "dx", "dt", "dt-factor", "t-end", "window"})
         opt.require_positive(o);
     opt.require_at_least("m", 1);
@@ -62,6 +65,7 @@ static int run_case(int argc, char** argv)
     if (std::lround(H / dx) < 2 * m + 2) opt.fail("option --dx: dx too coarse for the plate height");
     if (std::lround(T / dx) < 1) opt.fail("option --dx: dx larger than the plate thickness");
     adapt.validate(opt);
+    if (compare_fine && !adapt.on) opt.fail("option --compare-fine: needs --adaptive");
     run.quick_threads = 1;  // the quick grid is too small to gain from threads
     run.start();
     const std::filesystem::path& out = run.out();
@@ -79,24 +83,34 @@ static int run_case(int argc, char** argv)
         return bc;
     };
     const long nz = std::lround(T / dx);
-    pd::crack::SlabTips obs{.origin = {{0, H / 2}}, .dir = {{1, 0}}, .threshold = threshold, .walk = walk, .step = 2.5 * dx, .h0 = dx, .y_mid = H / 2,
-                 .half_band = H / 2 - delta, .nz = nz, .tip_mid = {}, .tip_bot = {}, .tip_top = {}, .x = {}, .phi = {}, .phi0 = {},
-                 .crack = {}, .u_max = 0};
-    const long every = std::max(1L, std::lround(0.1e-6 / std::min(dt_max, 0.5 * dx / (adapt.on ? 1 << adapt.levels : 1) / 5000)));  // ~0.1 us
-    pd::crack::RunInfo info;
-    std::size_t nodes = body.size(), n_bonds = 0;
-    pd::AdaptiveStats st;
-    if (!adapt.on) {
-        // 5. Integrate (uniform grid).
-        pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
-        const auto keep = pd::cut_by_rectangle(body, corner, e1, e2);
+    auto tips = [&] {
+        return pd::crack::SlabTips{.origin = {{0, H / 2}}, .dir = {{1, 0}}, .threshold = threshold, .walk = walk, .step = 2.5 * dx, .h0 = dx,
+                                   .y_mid = H / 2, .half_band = H / 2 - delta, .nz = nz, .tip_mid = {}, .tip_bot = {}, .tip_top = {}, .x = {},
+                                   .phi = {}, .phi0 = {}, .crack = {}, .u_max = 0};
+    };
+    pd::crack::SlabTips obs = tips(), obs_fine = tips();
+    const double dx_fine = adapt.on ? dx / (1 << adapt.levels) : dx;
+    const long every = std::max(1L, std::lround(0.1e-6 / std::min(dt_max, 0.5 * dx_fine / 5000)));  // ~0.1 us
+    // 5. Integrate on a uniform grid of spacing s (slabs of the --dx grid: the same layers at any s).
+    auto uniform = [&](double s, pd::crack::SlabTips& o, std::size_t& n_bonds, bool checkpoints) {
+        const pd::Body<3> b = pd::box<3>({{0, 0, 0}}, {{L, H, T}}, s);
+        pd::Bonds bonds = pd::build_bonds(b, m * s, {.partial_volume = pd::parse_partial_volume(pv), .keep = {}});
+        const auto keep = pd::cut_by_rectangle(b, corner, e1, e2);
         pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
         n_bonds = bonds.size();
-        info = pd::crack::run_fracture<3>(body, bonds, mat, loads(body), dt_max, safety, t_end, every,
-            [&](double t, std::vector<double> p, auto& sim) { obs(t, body.x, bonds, std::move(p), nullptr, sim.u); },
-            {.no_fail = {}, .show_progress = !quick, .checkpoints = &run.checkpoints(), .sampler_state = [&](pd::StateArchive& ar) { obs.state(ar); }});
+        return pd::crack::run_fracture<3>(b, bonds, mat, loads(b), dt_max, safety, t_end, every,
+            [&](double t, std::vector<double> p, auto& sim) { o(t, b.x, bonds, std::move(p), nullptr, sim.u); },
+            {.no_fail = {}, .show_progress = !quick, .checkpoints = checkpoints ? &run.checkpoints() : nullptr,
+             .sampler_state = [&](pd::StateArchive& ar) { o.state(ar); }});
+    };
+    pd::crack::RunInfo info, info_fine;
+    std::size_t nodes = body.size(), n_bonds = 0, n_bonds_fine = 0;
+    pd::AdaptiveStats st;
+    if (!adapt.on) {
+        info = uniform(dx, obs, n_bonds, true);
     } else {
-        // 5. Integrate, refining the grid where the triggers fire (spec/002 sec. 4).
+        // 5. Integrate, refining the grid where the triggers fire (spec/002 sec. 4); first, if asked, the uniform fine grid.
+        if (compare_fine) info_fine = uniform(dx_fine, obs_fine, n_bonds_fine, false);
         const pd::AdaptiveScene<3> scene{.pmb = {}, .rho = 0, .s0 = {}, .cut = pd::rectangle_crossing(corner, e1, e2), .boundary = loads, .no_fail = {}};
         const pd::crack::AdaptiveInfo a = pd::crack::run_fracture_adaptive<3>(pd::RefinedGrid<3>(body, delta), scene,
             adapt.options(pd::Refinement::delta, m, pd::parse_partial_volume(pv)), mat, dt_max, safety, t_end, every,
@@ -108,7 +122,6 @@ static int run_case(int argc, char** argv)
     }
     const std::vector<double>& phi = obs.phi;
     const pd::Field<3>& x = obs.x;
-    const double dx_fine = adapt.on ? dx / (1 << adapt.levels) : dx;
     const pd::crack::Layer mid = pd::crack::layer(x, dx, nz / 2), bottom = pd::crack::layer(x, dx, 0);
 
     // 6. Metrics on the mid layer (crack_metrics rule: confirm over 4 mm, fit over 10 mm, bins of the
@@ -118,9 +131,11 @@ static int run_case(int argc, char** argv)
     const pd::crack::Mask& crack = obs.crack;
     const pd::crack::TipHistory &tip_mid = obs.tip_mid, &tip_bot = obs.tip_bot, &tip_top = obs.tip_top;
     const pd::Vec<2> origin = obs.origin, dir = obs.dir;
-    auto branching = [&](const pd::crack::Layer& ly, const pd::crack::TipHistory& th) {
+    auto branching = [&](const pd::crack::Layer& ly, const pd::crack::TipHistory& th, const pd::crack::SlabTips& o = {}) {
         const double s0 = th.size() ? th.advance.front() : nan;
-        return pd::crack::find_branching(ly.x, ly.take(phi), origin, dir, dx_fine, s0, rule, ly.take(crack));
+        const std::vector<double>& f = o.phi.empty() ? phi : o.phi;
+        const pd::crack::Mask& c = o.phi.empty() ? crack : o.crack;
+        return pd::crack::find_branching(ly.x, ly.take(f), origin, dir, dx_fine, s0, rule, ly.take(c));
     };
     const pd::crack::Branching br = branching(mid, tip_mid), br_surf = branching(bottom, tip_bot);
     const double t_init = tip_mid.initiation_time(0.99 * dx);
@@ -190,6 +205,14 @@ static int run_case(int argc, char** argv)
         {"steps", static_cast<double>(info.steps), nan, nan, "-"},
         {"wall_time", info.wall, nan, nan, "s"}});
     if (adapt.on) run.summary({{"grid_updates", static_cast<double>(st.updates), nan, nan, "-"}, {"wall_adaptive_updates", st.wall_update, nan, nan, "s"}});
+    if (adapt.on && compare_fine) {  // the uniform fine grid of this process: its branch and wall time beside the adaptive run's
+        const pd::crack::Branching bf = branching(pd::crack::layer(obs_fine.x, dx, nz / 2), obs_fine.tip_mid, obs_fine);
+        run.summary_observed({{"x_branch_uniform_fine_m", bf.found ? bf.point[0] : nan, nan, nan, "m"},
+                              {"t_branch_uniform_fine_s", bf.found ? obs_fine.tip_mid.time_at_advance(bf.s) : nan, nan, nan, "s"},
+                              {"bonds_uniform_fine", static_cast<double>(n_bonds_fine), nan, nan, "-"},
+                              {"wall_uniform_fine", info_fine.wall, nan, nan, "s"},
+                              {"speedup_vs_uniform_fine", info_fine.wall / info.wall, nan, nan, "-"}});
+    }
     run.print_summary(22);
 
     // The source's result is qualitative (a branch forms); the tip may not outrun the Rayleigh
