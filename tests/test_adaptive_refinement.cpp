@@ -217,3 +217,32 @@ TEST(AdaptiveRefinement, RunIsTheSameForAnyThreadCount)
     EXPECT_GT(std::get<0>(one), 1);
     EXPECT_EQ(one, two);
 }
+
+// Method B on a lattice rotated by 10 deg: the children sit at the sub-cell centres along the rotated
+// axes, so a split block of cells is the rotated lattice of half the spacing (nearest neighbours at
+// h/2 exactly, each child h/4 (sqrt 2) from its parent), with the volume kept.
+TEST(AdaptiveRefinement, RotatedLatticeSplitsAlongItsAxes)
+{
+    const double theta = 10 * 3.14159265358979323846 / 180, c = std::cos(theta), s = std::sin(theta);
+    pd::Body<2> body;
+    body.dx = h0;
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i) body.push({{c * i * h0 - s * j * h0, s * i * h0 + c * j * h0}}, h0 * h0);
+    pd::RefinedGrid<2> g(body, m * h0, theta);
+    std::vector<int> all(36);
+    for (int i = 0; i < 36; ++i) all[i] = i;
+    g.split(all, pd::Refinement::delta);
+    double volume = 0;
+    for (std::size_t i = 36; i < g.size(); ++i) {
+        volume += g.volume[i];
+        EXPECT_NEAR(norm(g.x[i] - g.x[g.parent[i]]), h0 / 4 * std::sqrt(2.0), 1e-15);
+        const pd::Vec<2> d = g.x[i] - g.x[g.parent[i]];  // along the rotated diagonals: |d . axis| = h0/4
+        EXPECT_NEAR(std::abs(c * d[0] + s * d[1]), h0 / 4, 1e-15);
+        double nearest = 1e9;
+        for (std::size_t j = 36; j < g.size(); ++j)
+            if (j != i) nearest = std::min(nearest, norm(g.x[j] - g.x[i]));
+        EXPECT_NEAR(nearest, h0 / 2, 1e-15);
+    }
+    EXPECT_NEAR(volume, 36 * h0 * h0, 1e-18);
+    EXPECT_THROW(pd::RefinedGrid<3>(pd::box<3>({{0, 0, 0}}, {{2 * h0, 2 * h0, 2 * h0}}, h0), m * h0, 0.1), std::invalid_argument);
+}

@@ -1,7 +1,7 @@
 // pd/core/refinement.hpp -- multi-level grids of cell-centred nodes (spec/002 sec. 4.4-4.6): the
 // node tree of adaptive grid refinement, Method B (cell splitting).
 //   split(nodes): each listed active node (a cell of side h centred at x) becomes 2^D children at the
-//     centres of its sub-cells, x +- h/4 per axis, side h/2, volume V/2^D (they sum to the parent's),
+//     centres of its sub-cells, x +- h/4 along each lattice axis (rotated by `angle` in 2D), side h/2, volume V/2^D (they sum to the parent's),
 //     level + 1; the parent is kept in the tree, inactive (the source's volume := 0 and negative
 //     level, written here as a flag). The children's horizon follows the refinement type (sec. 3.3):
 //     delta (delta halves, m kept), m (delta kept, m doubles) or delta_m (delta = m_level h_child).
@@ -55,15 +55,18 @@ struct RefinedGrid {
     std::vector<int> first_child;      // the first of its 2^D children (-1: not split)
     std::vector<std::uint8_t> active;  // 1: a node of the computation; 0: split
     double measure = 1;                // 2D thickness / 1D cross-section (as Body)
+    double angle = 0;                  // 2D: rotation of the lattice axes from x [rad] (0: axis-aligned cells)
 
     static constexpr int children = 1 << D;
 
     RefinedGrid() = default;
     // The initial grid: the nodes of a lattice body (spacing body.dx > 0), all with horizon delta.
-    RefinedGrid(const Body<D>& body, double delta0) : measure(body.measure)
+    // angle (2D only): the lattice's axes are rotated by it from x and y [rad]; children follow them.
+    RefinedGrid(const Body<D>& body, double delta0, double lattice_angle = 0) : measure(body.measure), angle(lattice_angle)
     {
         if (!(body.dx > 0)) throw std::invalid_argument("RefinedGrid: the initial body must be a lattice (dx > 0)");
         if (!(delta0 > 0)) throw std::invalid_argument("RefinedGrid: the horizon must be positive");
+        if (D != 2 && angle != 0) throw std::invalid_argument("RefinedGrid: a rotated lattice is 2D only");
         for (std::size_t i = 0; i < body.size(); ++i) add(body.x[i], body.volume[i], body.dx, delta0, 0, -1);
     }
 
@@ -83,8 +86,14 @@ struct RefinedGrid {
             const double vp = volume[p];
             const int lp = level[p];
             for (int c = 0; c < children; ++c) {
-                Vec<D> xc = xp;
-                for (int d = 0; d < D; ++d) xc[d] += ((c >> d) & 1 ? 0.25 : -0.25) * h[p];
+                Vec<D> off{};  // the sub-cell centre in the lattice's axes
+                for (int d = 0; d < D; ++d) off[d] = ((c >> d) & 1 ? 0.25 : -0.25) * h[p];
+                Vec<D> xc = xp + off;
+                if constexpr (D == 2)
+                    if (angle != 0) {
+                        const double co = std::cos(angle), si = std::sin(angle);
+                        xc = xp + Vec<D>{{co * off[0] - si * off[1], si * off[0] + co * off[1]}};
+                    }
                 add(xc, vp / children, hc, dc, lp + 1, p);
             }
             active[p] = 0;
