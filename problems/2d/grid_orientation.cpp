@@ -18,6 +18,7 @@
 // The full study (angles 0,5,10,20,30,40; m 3..7; dx 1 mm) is in problems/cases.txt.
 // Writes: summary.csv, paths.csv (centrelines), runs.csv, params.csv.
 #include "problems/common/crack/crack_run.hpp"
+#include "problems/common/crack/rotated_plate.hpp"
 #include "pd/damage/precrack.hpp"
 #include "pd/io/case.hpp"
 #include "pd/io/guarded_main.hpp"
@@ -28,21 +29,6 @@
 namespace {
 constexpr double pi = 3.14159265358979323846;
 
-// Lattice of spacing dx rotated by theta about the centre of [0, L]^2, nodes inside the plate.
-pd::Body<2> rotated_plate(double L, double dx, double theta)
-{
-    pd::Body<2> b;
-    b.dx = dx;
-    const double c = std::cos(theta), s = std::sin(theta);
-    const long n = std::lround(std::ceil(0.75 * L / dx));  // covers the rotated square
-    for (long j = -n; j <= n; ++j)
-        for (long i = -n; i <= n; ++i) {
-            const double u = (i + 0.5) * dx, v = (j + 0.5) * dx;  // half-cell offset: no node on the mid-line at 0 deg
-            const pd::Vec<2> p{{0.5 * L + c * u - s * v, 0.5 * L + s * u + c * v}};
-            if (p[0] > 0 && p[0] < L && p[1] > 0 && p[1] < L) b.push(p, dx * dx);
-        }
-    return b;
-}
 }  // namespace
 
 static int run_case(int argc, char** argv)
@@ -104,7 +90,7 @@ static int run_case(int argc, char** argv)
     for (const auto& [a_deg, m] : runs_list) {
             // 2. Discretisation and pre-crack.
             const double delta = m * dx, theta = a_deg * pi / 180;
-            const pd::Body<2> body = rotated_plate(L, dx, theta);
+            const pd::Body<2> body = pd::crack::rotated_plate(L, dx, theta);
             pd::Bonds bonds = pd::build_bonds(body, delta, {.partial_volume = pd::parse_partial_volume(pv), .lattice_angle = theta, .keep = {}});
             const auto keep = pd::cut_by_segment(body, {{-dx, L / 2}}, {{a0, L / 2}});
             pd::crack::break_bonds(bonds, [&](int i, int j) { return !keep(i, j); });
