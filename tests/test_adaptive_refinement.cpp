@@ -122,7 +122,7 @@ TEST(AdaptiveRefinement, TransferReproducesLinearFieldsWithoutCrossingTheCrack)
     for (std::size_t i = 0; i < run.body().size(); ++i) {
         const pd::Vec<2> x = run.body().x[i];
         near_crack += std::abs(x[1] - H / 2) < h0 && run.grid().level[run.ids()[i]] > 0;
-        for (int d = 0; d < 2; ++d) {
+        for (int d = 0; d < 2; ++d) {  // bounds: round-off of the least-squares fit, ~1e-12 of the fields (1e-6 m, 1e-3 m/s)
             EXPECT_NEAR(run.sim().u.c[d][i], field(x, d, 1), 1e-18) << i;
             EXPECT_NEAR(run.sim().v.c[d][i], field(x, d, 1e3), 1e-15) << i;
         }
@@ -190,7 +190,7 @@ TEST(AdaptiveRefinement, PairCriticalStretchFollowsTheHorizons)
         for (std::int64_t k = f.bonds.begin(i); k < f.bonds.end(i); ++k) {
             const double di = f.delta[i], dj = f.delta[f.bonds.partner[k]];
             EXPECT_EQ(s0[k], s0[f.bonds.reverse[k]]);
-            if (di == dj) {
+            if (di == dj) {  // bound: round-off of the weighted mean of two equal values (s0 ~ 1e-3)
                 EXPECT_NEAR(s0[k], s0_of(di), 1e-15);
             }
             if (di != dj) {
@@ -232,7 +232,7 @@ TEST(AdaptiveRefinement, RotatedLatticeSplitsAlongItsAxes)
     std::vector<int> all(36);
     for (int i = 0; i < 36; ++i) all[i] = i;
     g.split(all, pd::Refinement::delta);
-    double volume = 0;
+    double volume = 0;  // bounds: round-off of lengths of 1e-4 m (a few ulps) and of the volume sum
     for (std::size_t i = 36; i < g.size(); ++i) {
         volume += g.volume[i];
         EXPECT_NEAR(norm(g.x[i] - g.x[g.parent[i]]), h0 / 4 * std::sqrt(2.0), 1e-15);

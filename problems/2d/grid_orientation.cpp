@@ -97,14 +97,7 @@ static int run_case(int argc, char** argv)
 
             // 3.-4. Traction layers 1.4 dx deep (at least one node row at any rotation, exactly one at
             //       0 deg); b such that the total force is sigma L per unit thickness.
-            pd::Boundary<2> bc;
-            for (int side : {1, -1}) {
-                const pd::NodeSet layer = pd::select(body, side > 0 ? pd::in_box<2>({{-1, L - 1.4 * dx}}, {{2 * L, 2 * L}})
-                                                                    : pd::in_box<2>({{-1, -L}}, {{2 * L, 1.4 * dx}}), "loaded layer");
-                double V = 0;  // layer area per unit thickness [m^2]
-                for (int i : layer) V += body.volume[i];
-                bc.body_force({{0, side * sigma * L / V}}, layer);
-            }
+            const pd::Boundary<2> bc = pd::crack::layer_loads(body, L, 1.4 * dx, sigma);
 
             // 5. Integrate (damage sampled only at the end).
             std::vector<double> phi, seeds;

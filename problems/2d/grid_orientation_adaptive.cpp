@@ -73,17 +73,7 @@ static int run_case(int argc, char** argv)
 
     // 2.-4. Pre-crack as cut bonds; traction layers 1.4 dx deep with the total force sigma L (dx: the coarse spacing).
     const auto crossing = pd::segment_crossing({{-dx, L / 2}}, {{a0, L / 2}});
-    auto loads = [&](const pd::Body<2>& b) {
-        pd::Boundary<2> bc;
-        for (int side : {1, -1}) {
-            const pd::NodeSet layer = pd::select(b, side > 0 ? pd::in_box<2>({{-1, L - 1.4 * dx}}, {{2 * L, 2 * L}})
-                                                             : pd::in_box<2>({{-1, -L}}, {{2 * L, 1.4 * dx}}), "loaded layer");
-            double V = 0;
-            for (int i : layer) V += b.volume[i];
-            bc.body_force({{0, side * sigma * L / V}}, layer);
-        }
-        return bc;
-    };
+    auto loads = [&](const pd::Body<2>& b) { return pd::crack::layer_loads(b, L, 1.4 * dx, sigma); };
     auto recorder = [&](double s) {
         return pd::crack::TipRecorder{.origin = {{0, L / 2}}, .dir = {{1, 0}}, .threshold = pd::crack::tip_threshold, .walk = walk,
                                       .step = 2.5 * s, .region = {}, .beyond = {}, .tips = {}, .x = {}, .phi = {}, .phi0 = {}, .crack = {}};

@@ -88,12 +88,8 @@ struct RefinedGrid {
             for (int c = 0; c < children; ++c) {
                 Vec<D> off{};  // the sub-cell centre in the lattice's axes
                 for (int d = 0; d < D; ++d) off[d] = ((c >> d) & 1 ? 0.25 : -0.25) * h[p];
-                Vec<D> xc = xp + off;
-                if constexpr (D == 2)
-                    if (angle != 0) {
-                        const double co = std::cos(angle), si = std::sin(angle);
-                        xc = xp + Vec<D>{{co * off[0] - si * off[1], si * off[0] + co * off[1]}};
-                    }
+                if constexpr (D == 2) off = Vec<D>{{std::cos(angle) * off[0] - std::sin(angle) * off[1], std::sin(angle) * off[0] + std::cos(angle) * off[1]}};
+                const Vec<D> xc = xp + off;
                 add(xc, vp / children, hc, dc, lp + 1, p);
             }
             active[p] = 0;
@@ -159,11 +155,11 @@ struct RefinedGrid {
         }
         int split_count = 0;
         for (int l = 1; l <= levels && !nodes.empty(); ++l) {
-            std::vector<int> todo;
+            std::vector<int> zone;  // its active nodes
             for (int i : same_level_within(nodes, margin))
-                if (active[i]) todo.push_back(i);
-            split(todo, rule, rule == Refinement::delta_m ? m_level(l) : 0.0);
-            split_count += static_cast<int>(todo.size());
+                if (active[i]) zone.push_back(i);
+            split(zone, rule, rule == Refinement::delta_m ? m_level(l) : 0.0);
+            split_count += static_cast<int>(zone.size());
             std::vector<int> next;
             for (int q : nodes)
                 if (first_child[q] >= 0)

@@ -77,10 +77,8 @@ struct AdaptiveScene {
 struct AdaptiveStats {
     long updates = 0;             // grid updates
     long rollbacks = 0;           // steps repeated after a damage-triggered update
-    long energy_updates = 0;      // updates by the energy trigger
     std::size_t nodes_initial = 0;
     double wall_update = 0;       // refining, rebuilding the bonds, transferring, restarting [s]
-    double wall_trigger = 0;      // energy densities of the trigger and the roll-back copies [s]
 };
 
 template <int D>
@@ -113,9 +111,7 @@ public:
     {
         const bool armed = sim_->t + dt >= opt_.t_start;
         for (;;) {
-            io::Timer copy;
             const State before = armed && opt_.damage_trigger ? save(true) : State{};
-            stats_.wall_trigger += copy.seconds();
             const long broke_before = sim_->broken_bonds;
             sim_->step(dt);
             if (!armed || !opt_.damage_trigger || sim_->broken_bonds == broke_before) break;
@@ -188,11 +184,11 @@ private:
     int refine_around(const std::vector<int>& level0)
     {
         done_.resize(stats_.nodes_initial, 0);
-        std::vector<int> todo;
+        std::vector<int> fresh;  // ancestors not refined around before
         for (int q : unique(level0))
-            if (!done_.at(q)) todo.push_back(q), done_[q] = 1;
-        if (todo.empty() || (opt_.zone_margin > 0 && !grid_.needs_refinement(todo, opt_.levels))) return 0;
-        return grid_.refine_around(todo, opt_.levels, opt_.rule, opt_.m_level, opt_.zone_margin);
+            if (!done_.at(q)) fresh.push_back(q), done_[q] = 1;
+        if (fresh.empty() || (opt_.zone_margin > 0 && !grid_.needs_refinement(fresh, opt_.levels))) return 0;
+        return grid_.refine_around(fresh, opt_.levels, opt_.rule, opt_.m_level, opt_.zone_margin);
     }
 
     State save(bool with_bonds) const
@@ -204,16 +200,14 @@ private:
 
     void energy_trigger()
     {
-        io::Timer timer;
         const std::vector<double> W = model_.energy_density(fam_.bonds, sim_->positions());
         const double W_max = *std::max_element(W.begin(), W.end());
         std::vector<int> hit;
         if (W_max > 0)
             for (std::size_t i = 0; i < W.size(); ++i)
                 if (W[i] >= opt_.energy_fraction * W_max) hit.push_back(grid_.ancestor(ids_[i]));
-        stats_.wall_trigger += timer.seconds();
         io::Timer update;
-        if (refine_around(hit) > 0) rebuild(save(true)), ++stats_.energy_updates;
+        if (refine_around(hit) > 0) rebuild(save(true));
         stats_.wall_update += update.seconds();
     }
 

@@ -1,7 +1,10 @@
 // A square plate [0, L]^2 on a lattice of spacing dx rotated by theta about its centre (the grid-
 // orientation study of spec/002 ch. 5): the nodes of the rotated lattice inside the plate, each
-// with a full cell volume dx^2; a half-cell offset puts no node on the mid-line at 0 deg.
+// with a full cell volume dx^2; a half-cell offset puts no node on the mid-line at 0 deg. Its load:
+// a sudden traction sigma on the top and bottom layers `depth` deep, as body forces whose total is
+// sigma L per unit thickness (whatever nodes the layer holds at any rotation or refinement).
 #pragma once
+#include "pd/bc/boundary.hpp"
 #include "pd/core/lattice.hpp"
 
 #include <cmath>
@@ -21,6 +24,19 @@ inline Body<2> rotated_plate(double L, double dx, double theta)
             if (p[0] > 0 && p[0] < L && p[1] > 0 && p[1] < L) b.push(p, dx * dx);
         }
     return b;
+}
+
+inline Boundary<2> layer_loads(const Body<2>& b, double L, double depth, double sigma)
+{
+    Boundary<2> bc;
+    for (int side : {1, -1}) {
+        const NodeSet layer = select(b, side > 0 ? in_box<2>({{-1, L - depth}}, {{2 * L, 2 * L}}) : in_box<2>({{-1, -L}}, {{2 * L, depth}}),
+                                     "loaded layer");
+        double V = 0;  // layer area per unit thickness [m^2]
+        for (int i : layer) V += b.volume[i];
+        bc.body_force({{0, side * sigma * L / V}}, layer);
+    }
+    return bc;
 }
 
 }  // namespace pd::crack
