@@ -5,7 +5,8 @@
 // (K u = F, the analytic PMB tangent at the reference). Grid: nodes at x = -0.5 + i dx0, y = -0.25 +
 // j dx0 (101 x 51 at dx0 = 10 mm), delta0 = 3.015 dx0, exact cell areas in the horizon (IPA-Hybrid's
 // areas, integration points at the nodes; bonds.hpp). Models A, B, C refine the left half (x < 0)
-// 1, 2, 3 times, D, E, F the upper half (y > 0), by Method B with delta halving (core/refinement.hpp).
+// 1, 2, 3 times, D, E, F the upper half (y > 0), by Method B with delta halving (core/refinement.hpp;
+// --nodes A: Method A, midpoints around kept parents, the cell volumes of eq. 3.4 read as geometry).
 // Our reading of the zone (the source shows it only in figures): level l splits the level l-1 nodes
 // beyond the horizons of the levels below (setback delta0 + ... + delta_(l-2) from the axis), so no
 // node sees one two levels finer. Supports: u_x = 0 on the nodes of x = 0, u_y = 0 on those of y = 0
@@ -21,7 +22,7 @@
 // |error| at 0 < x <= 0.1 m. m-study (--m-list): L2 = sqrt(sum (u - u_ref)^2 / sum u_ref^2) on each
 // side (eq. 4.2 without its printed 1/q, which puts the slopes two orders below the published ones)
 // and |d L2 / d m| against the published 2.2e-2 / 0.3e-2 (A-C) and 3.6e-2 / 5.8e-3 (D-F).
-// Run: refined_plate_static_2d [--models A,B,C,D,E,F] [--dx0 0.01] [--m-list ...] [--quick] [--out DIR]
+// Run: refined_plate_static_2d [--models A,B,C,D,E,F] [--nodes B|A] [--dx0 0.01] [--m-list ...] [--quick] [--out DIR]
 // Writes: runs.csv (one row per model, coupling, correction), lines.csv (the profiles), m_study.csv, summary.csv,
 // grid_<model>.vtu (the refined grid with its levels and the dual-horizon displacement, for ParaView).
 #include "pd/io/case.hpp"
@@ -93,6 +94,8 @@ static int run_case(int argc, char** argv)
     opt.add_string("m-list", "1.515,2.015,3.015,4.015,5.015",
                    "m-study: dx0 = (delta0 - 0.015 dx0)/(m - 0.015), the source's 20 ... 6 mm (quick: 2.015,3.015; none: no study)");
     std::string& m_models = opt.add_string("m-models", "A,D", "layouts of the m-study (dual horizon, no correction; quick: A)");
+    const std::string& nodes = opt.add_string("nodes", "B", "node generation: B (cell splitting, the source's) or A (midpoint insertion, parent kept)",
+                                              {"B", "A"});
     for (const char* o : {"E", "p", "length", "width", "thickness", "dx0", "m"}) opt.require_positive(o);
     run.parse(argc, argv);
     run.quick_default("dx0", 0.025);
@@ -103,6 +106,7 @@ static int run_case(int argc, char** argv)
     for (char c : models)
         if (c != ',' && (c < 'A' || c > 'F')) opt.fail("option --models: layouts are A-F, comma-separated, got '" + models + "'");
     run.start();
+    const pd::NodeGeneration generation = nodes == "A" ? pd::NodeGeneration::midpoint : pd::NodeGeneration::cell_split;
     const Plate P{.Lx = Lx, .Ly = Ly, .t = t, .dx0 = dx0, .delta0 = m * dx0, .E = E, .p = p};
     const double nan = std::nan("");
 
@@ -116,7 +120,7 @@ static int run_case(int argc, char** argv)
         if (name == ',') continue;
         const int levels = (name - 'A') % 3 + 1;
         const bool upper = name >= 'D';
-        const pd::RefinedGrid<2> g = pd::plate::refined_plate(P, levels, upper);
+        const pd::RefinedGrid<2> g = pd::plate::refined_plate(P, levels, upper, generation);
         std::vector<double> ux_dual;  // u_x on the line of the dual-horizon run without correction, to compare the couplings
         for (const pd::HorizonCoupling coupling : {pd::HorizonCoupling::dual, pd::HorizonCoupling::source})
             for (const bool corrected : {false, true}) {
@@ -174,7 +178,7 @@ static int run_case(int argc, char** argv)
         for (const double mm : m_list) {
             Plate Pm = P;
             Pm.dx0 = (P.delta0 - 0.015 * P.dx0) / (mm - 0.015), Pm.delta0 = mm * Pm.dx0;
-            const Solution s = pd::plate::solve(Pm, pd::plate::refined_plate(Pm, (name - 'A') % 3 + 1, upper), pd::HorizonCoupling::dual, false);
+            const Solution s = pd::plate::solve(Pm, pd::plate::refined_plate(Pm, (name - 'A') % 3 + 1, upper, generation), pd::HorizonCoupling::dual, false);
             const LineErrors e = line_errors(Pm, s, upper);
             mstudy.row({std::string(1, name), mm, Pm.dx0, s.body.size(), e.L2_r, e.L2_c, upper ? e.max_uy : nan, s.wall});
             std::printf("m-study %c: m = %.3f, %zu nodes, L2 refined %.3e, coarse %.3e%s\n", name, mm, s.body.size(), e.L2_r, e.L2_c,

@@ -1,6 +1,6 @@
 // problems/common/refined_plate.hpp -- the plate of spec/002 sec. 5.1 (V1) on a grid refined in one
 // half, solved statically (problems/2d/refined_plate_static.cpp): the node-centred grid and its
-// Method B refinement, the families of the per-node horizons (exact cell areas), PMB with the horizon
+// Method B (or A) refinement, the families of the per-node horizons (exact cell areas), PMB with the horizon
 // factors and optionally the energy surface correction, supports on the axes, the end loads, and
 // K u = F with the analytic PMB tangent at the reference (Cholesky for the symmetric dual-horizon
 // stiffness, LU for the plain variable horizon's). The choices are written in the driver's header.
@@ -24,8 +24,9 @@ struct Plate {
     double Lx, Ly, t, dx0, delta0, E, p;  // [m], [m], [m], [m], [m], [Pa], [Pa]
 };
 
-// The node-centred plate, then `levels` Method B refinements of the left (A-C) or upper (D-F) half.
-pd::RefinedGrid<2> refined_plate(const Plate& P, int levels, bool upper)
+// The node-centred plate, then `levels` refinements of the left (A-C) or upper (D-F) half, by Method B
+// (the source's) or Method A.
+pd::RefinedGrid<2> refined_plate(const Plate& P, int levels, bool upper, pd::NodeGeneration generation = pd::NodeGeneration::cell_split)
 {
     pd::Body<2> b;
     b.dx = P.dx0, b.measure = P.t;
@@ -35,7 +36,8 @@ pd::RefinedGrid<2> refined_plate(const Plate& P, int levels, bool upper)
     for (long j = -ny; j <= ny; ++j)
         for (long i = -nx; i <= nx; ++i) b.push({{i * P.dx0, j * P.dx0}}, P.dx0 * P.dx0 * P.t);
     pd::RefinedGrid<2> g(b, P.delta0);
-    g.refine_nested([&](const pd::Vec<2>& x, double setback) { return (upper ? x[1] : -x[0]) > setback + on_axis; }, levels, pd::Refinement::delta);
+    g.refine_nested([&](const pd::Vec<2>& x, double setback) { return (upper ? x[1] : -x[0]) > setback + on_axis; }, levels, pd::Refinement::delta, {},
+                     generation);
     return g;
 }
 
@@ -68,10 +70,16 @@ Solution solve(const Plate& P, const pd::RefinedGrid<2>& g, pd::HorizonCoupling 
     std::vector<double> load(2 * n, 0.0);  // nodal force [N]
     double edge = 0;  // the outer face of the end cells [m]
     for (std::size_t i = 0; i < n; ++i) edge = std::max(edge, std::abs(s.body.x.c[0][i]) + h[i] / 2);
+    // Method A keeps the refined end nodes on the initial end line; they own the outer rim of their
+    // initial cell, so their cells reach from |x| - h/2 to the end, and carry the traction on V / width.
+    const bool kept = g.method == pd::NodeGeneration::midpoint;
     for (std::size_t i = 0; i < n; ++i) {
         const double x = s.body.x.c[0][i], y = s.body.x.c[1][i];
         held[2 * i] = std::abs(x) < on_axis, held[2 * i + 1] = std::abs(y) < on_axis;
-        if (std::abs(std::abs(x) + h[i] / 2 - edge) < on_axis) load[2 * i] = (x > 0 ? P.p : -P.p) / h[i] * s.body.volume[i];  // b = p/h
+        const double sign = x > 0 ? 1 : -1;
+        if (std::abs(std::abs(x) + h[i] / 2 - edge) < on_axis) load[2 * i] = sign * P.p / h[i] * s.body.volume[i];  // b = p/h
+        else if (kept && std::abs(std::abs(x) - (edge - P.dx0 / 2)) < on_axis)
+            load[2 * i] = sign * P.p * s.body.volume[i] / (edge - std::abs(x) + h[i] / 2);
     }
     const pd::DofMap dofs(held);
     F = Eigen::VectorXd::Zero(dofs.free);

@@ -143,6 +143,21 @@ public:
     const Explicit<D, PMB>& sim() const { return *sim_; }
     long broken_bonds() const { return broken_base_ + sim_->broken_bonds; }  // ordered bonds broken in the run
     double critical_step() const { return dt_crit_; }  // Silling-Askari, current families [s]
+    // The broken bonds between two level-0 nodes of the current grid, the pre-crack's excluded
+    // (ordered): none under the damage trigger with levels >= 1 (V6d); with the energy trigger alone,
+    // the fracture that happened where no trigger refined.
+    long coarse_bonds_broken() const
+    {
+        const Bonds& b = fam_.bonds;
+        long n = 0;
+        for (std::size_t i = 0; i < b.nodes(); ++i)
+            if (grid_.level[ids_[i]] == 0)
+                for (std::int64_t k = b.begin(i); k < b.end(i); ++k) {
+                    const int j = b.partner[k];
+                    n += !b.intact[k] && grid_.level[ids_[j]] == 0 && !(scene_.cut && scene_.cut(body_.x[i], body_.x[j]));
+                }
+        return n;
+    }
     const AdaptiveStats& stats() const { return stats_; }
 
 private:

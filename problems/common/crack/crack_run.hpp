@@ -150,6 +150,7 @@ struct AdaptiveInfo {
     RunInfo run;
     AdaptiveStats stats;
     std::size_t nodes_final = 0;
+    long coarse_broken = 0;  // AdaptiveFracture::coarse_bonds_broken at the end
 };
 template <int D, class Mat, class Sample>
 AdaptiveInfo run_fracture_adaptive(RefinedGrid<D> grid, AdaptiveScene<D> scene, const AdaptiveOptions& opt, const Mat& mat,
@@ -195,6 +196,7 @@ AdaptiveInfo run_fracture_adaptive(RefinedGrid<D> grid, AdaptiveScene<D> scene, 
     out.run.wall = timer.seconds();
     out.stats = run.stats();
     out.nodes_final = run.body().size();
+    out.coarse_broken = run.coarse_bonds_broken();
     return out;
 }
 
