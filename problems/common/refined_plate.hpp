@@ -2,8 +2,8 @@
 // half, solved statically (problems/2d/refined_plate_static.cpp): the node-centred grid and its
 // Method B (or A) refinement, the families of the per-node horizons (exact cell areas), PMB with the horizon
 // factors and optionally the energy surface correction, supports on the axes, the end loads, and
-// K u = F with the analytic PMB tangent at the reference (Cholesky for the symmetric dual-horizon
-// stiffness, LU for the plain variable horizon's). The choices are written in the driver's header.
+// K u = F with the analytic PMB tangent at the reference (supernodal Cholesky, CHOLMOD, for the
+// symmetric dual-horizon stiffness; UMFPACK LU for the plain variable horizon's). The choices are written in the driver's header.
 #pragma once
 #include "pd/core/refinement.hpp"
 #include "pd/core/timer.hpp"
@@ -88,9 +88,9 @@ Solution solve(const Plate& P, const pd::RefinedGrid<2>& g, pd::HorizonCoupling 
     const Eigen::SparseMatrix<double> K = pd::tangent_pmb(model, s.body, f.bonds, s.body.x, dofs);
     pd::SparseSolver solver;
     std::string failure;
-    const bool dual = coupling == pd::HorizonCoupling::dual;  // symmetric K: Cholesky; the plain variable horizon: LU
+    const bool dual = coupling == pd::HorizonCoupling::dual;  // symmetric K: Cholesky; the plain variable horizon: LU (three levels: 300k dof)
     Eigen::VectorXd U;
-    if (!solver.factorise(K, dual ? pd::LinearSolver::cholesky : pd::LinearSolver::lu, 0, 0, failure) || !solver.solve(F, U, failure))
+    if (!solver.factorise(K, dual ? pd::LinearSolver::cholmod : pd::LinearSolver::umfpack, 0, 0, failure) || !solver.solve(F, U, failure))
         throw std::runtime_error(failure);
     s.u = pd::Field<2>(n);
     for (std::size_t q = 0; q < 2 * n; ++q) s.u.c[q % 2][q / 2] = dofs.index[q] >= 0 ? U[dofs.index[q]] : 0.0;
