@@ -50,9 +50,12 @@ public:
             if (llt_.info() != Eigen::Success) failure = "CHOLMOD LL^T failed: tangent not positive definite";
             return llt_.info() == Eigen::Success;
         }
-        if (kind_ == LinearSolver::umfpack) {
-            umf_.compute(K);
-            if (umf_.info() != Eigen::Success) failure = "UMFPACK LU failed: singular tangent";
+        if (kind_ == LinearSolver::umfpack) {  // 64-bit indices: the 32-bit version runs out of index space near 300k unknowns
+            k64_ = K;  // kept: UmfPackLU refers to its matrix
+            umf_.compute(k64_);
+            if (umf_.info() != Eigen::Success)
+                failure = "UMFPACK LU failed (status " + std::to_string(umf_.umfpackFactorizeReturncode()) +
+                          (umf_.umfpackFactorizeReturncode() == UMFPACK_WARNING_singular_matrix ? ": singular tangent)" : ")");
             return umf_.info() == Eigen::Success;
         }
         cg_.setTolerance(cg_tol);
@@ -93,7 +96,8 @@ private:
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg_;
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
     Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt_;
-    Eigen::UmfPackLU<Eigen::SparseMatrix<double>> umf_;
+    Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long> k64_;
+    Eigen::UmfPackLU<Eigen::SparseMatrix<double, Eigen::ColMajor, SuiteSparse_long>> umf_;
 };
 
 }  // namespace pd
