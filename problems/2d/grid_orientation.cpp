@@ -36,12 +36,8 @@ static int run_case(int argc, char** argv)
     // 1. Options (SI; defaults: a subset of spec/002 ch. 5 on a coarser lattice).
     pd::io::Case run("grid_orientation_2d", "Crack path vs lattice orientation and m (2D PMB, spec/002 ch. 5).", "reports/2d/grid_orientation");
     pd::io::Options& opt = run.opt;
-    double& E = opt.add("E", 73.4e9, "Young's modulus", "Pa");
-    double& rho = opt.add("rho", 2440, "density", "kg/m^3");
-    double& Gc = opt.add("Gc", 7.0013, "fracture energy (s0 = 2.1070e-4 at delta = 3 mm)", "J/m^2");
-    double& sigma = opt.add("sigma", 0.8e6, "sudden traction on top and bottom", "Pa");
-    double& L = opt.add("size", 0.25, "plate side", "m");
-    double& a0 = opt.add("crack", 0.05, "edge pre-crack length", "m");
+    const pd::crack::GridPlateOptions plate = pd::crack::add_grid_plate_options(opt);
+    double &E = plate.E, &rho = plate.rho, &Gc = plate.Gc, &sigma = plate.sigma, &L = plate.L, &a0 = plate.a0;
     double& dx = opt.add("dx", 2e-3, "lattice spacing (source: 1e-3; quick: 4e-3)", "m");
     opt.add_string("angles", "0,10", "lattice rotations (deg), comma-separated; with --m-list: all pairs");
     opt.add_string("m-list", "3,6", "horizon ratios delta/dx, comma-separated; with --angles: all pairs");

@@ -6,10 +6,23 @@
 #pragma once
 #include "pd/bc/boundary.hpp"
 #include "pd/core/lattice.hpp"
+#include "pd/io/options.hpp"
 
 #include <cmath>
 
 namespace pd::crack {
+
+// The plate and material options of the grid-orientation drivers (spec/002 ch. 5), as registered.
+struct GridPlateOptions {
+    double &E, &rho, &Gc, &sigma, &L, &a0;
+};
+inline GridPlateOptions add_grid_plate_options(io::Options& opt)
+{
+    return {opt.add("E", 73.4e9, "Young's modulus", "Pa"), opt.add("rho", 2440, "density", "kg/m^3"),
+            opt.add("Gc", 7.0013, "fracture energy (s0 = 2.1070e-4 at delta = 3 mm)", "J/m^2"),
+            opt.add("sigma", 0.8e6, "sudden traction on top and bottom", "Pa"), opt.add("size", 0.25, "plate side", "m"),
+            opt.add("crack", 0.05, "edge pre-crack length", "m")};
+}
 
 inline Body<2> rotated_plate(double L, double dx, double theta)
 {
