@@ -175,6 +175,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     if constexpr (requires { model.pts.set_temperature_field(nullptr); })  // Johnson-Cook softening reads the run's temperatures
         if (heat) model.pts.set_temperature_field(&heat->T());
     pd::Explicit<D, Model> sim(body, bonds, model, cfg.rho);
+    sim.energy_books = true;  // hourglass work and the energy released by broken bonds (pd/time/verlet.hpp)
     pd::NodeSet held;  // fixed points with zero initial displacement; the others hold their own u0
     for (std::size_t i = 0; i < pc.size(); ++i) {
         bool moved = false;
@@ -203,8 +204,10 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
         heat->last_step = heat->field().due(cfg.steps, cfg.dt);
     }
 
-    // energy.csv; a dissipative model adds the heat its dissipation generated since step 0, released or not.
-    std::vector<std::string> columns{"step", "t_s", "kinetic_J", "strain_J", "external_work_J", "total_J"};
+    // energy.csv, the books of pd::Energies; a dissipative model adds the heat its dissipation generated
+    // since step 0, released or not.
+    std::vector<std::string> columns{"step",           "t_s",          "kinetic_J",          "strain_J",         "external_work_J",
+                                     "total_J",        "hourglass_work_J", "dissipated_J", "damage_released_J", "balance_error_J"};
     constexpr bool dissipative = pd::DissipativeModel<Model>;
     if (dissipative) columns.push_back("dissipated_heat_J");
     const std::size_t width = columns.size();
@@ -240,7 +243,8 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
         if (!(e_step || s_step || v_step)) return;
         last = sim.check_energy();  // throws pd::Unstable before a blown-up state is written
         if (e_step) {
-            std::vector<double> r{double(n), sim.t, last.kinetic, last.strain, last.external_work, last.total()};
+            std::vector<double> r{double(n),        sim.t,           last.kinetic,           last.strain,  last.external_work,
+                                  last.total(),     last.hourglass_work, last.dissipated, last.damage_released, last.balance};
             if (dissipative) r.push_back(dissipated);
             energy_row(r);
         }
@@ -268,8 +272,8 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
     pd::io::Timer timer;
     const int status = step_loop(cfg.checkpoints, cfg.steps, step, output, state);
     if (status != 0) return status;
-    std::printf("\n  step %ld  t = %.6g s  kinetic %.6g J  strain %.6g J  external work %.6g J  total %.6g J\n",
-                cfg.steps, sim.t, last.kinetic, last.strain, last.external_work, last.total());
+    std::printf("\n  step %ld  t = %.6g s  kinetic %.6g J  strain %.6g J  external work %.6g J  total %.6g J  balance error %.3g J\n",
+                cfg.steps, sim.t, last.kinetic, last.strain, last.external_work, last.total(), last.balance);
     if (cfg.s0 > 0) std::printf("  broken bonds %ld of %zu (ordered pairs)\n", sim.broken_bonds, bonds.size());
     if (heat) report_heat(*heat);
     std::printf("%s: done, %ld steps in %.3g s; wrote %s\n", program, cfg.steps, timer.seconds(), cfg.out.string().c_str());

@@ -38,7 +38,8 @@ TEST(PdRun, OutputFilesFollowTheContract)
     const auto st = read_csv(r.dir / "state_step0012.csv");
     for (std::size_t i = 0; i < st.rows.size(); ++i) EXPECT_EQ(st.rows[i].fields[0], std::to_string(i));
     const std::string energy = slurp(r.dir / "energy.csv");
-    EXPECT_EQ(energy.substr(0, energy.find('\n')), "step,t_s,kinetic_J,strain_J,external_work_J,total_J");
+    EXPECT_EQ(energy.substr(0, energy.find('\n')),
+              "step,t_s,kinetic_J,strain_J,external_work_J,total_J,hourglass_work_J,dissipated_J,damage_released_J,balance_error_J");
     const auto e = read_csv(r.dir / "energy.csv");
     ASSERT_EQ(e.rows.size(), 4u);
     EXPECT_EQ(e.rows[1].fields[0], "5");

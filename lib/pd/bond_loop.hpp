@@ -344,6 +344,51 @@ void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Fiel
     else pass(model);
 }
 
+// The hourglass part of the internal force density [N/m^3]: the kernel's hourglass_force (a
+// HourglassKernel, kernel_concepts.hpp) summed over the intact bonds of each node by the per-node pass,
+// with the model's state of its last point pass. Returns false, f untouched, when the model's kernel
+// has none (no hourglass control, or C_hg = 0). The hourglass force is no gradient of an energy, so
+// the energy books integrate its work from this force (time/verlet.hpp).
+namespace detail {
+// The hourglass term of kernel k alone, as a non-ordinary kernel of the per-node bond pass (its lanes).
+template <class K, int D>
+struct HourglassPart {
+    static constexpr bool ordinary = false;
+    const K& k;
+    Vec<D> bond_force(std::size_t i, std::int64_t b, int j, const Vec<D>& Y) const { return k.hourglass_force(i, b, j, Y); }
+};
+}  // namespace detail
+
+template <int D, class Model>
+bool hourglass_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f)
+{
+    bool found = false;
+    auto pass = [&](const auto& kernel) {
+        using K = std::decay_t<decltype(kernel)>;
+        if constexpr (HourglassKernel<K, D>) {
+            found = true;
+            if constexpr (requires { model.sync_node_matrices(); }) model.sync_node_matrices();  // F of every node
+            if (f.size() != y.size()) f.resize(y.size());
+            const detail::HourglassPart<K, D> part{kernel};
+            if (bonds.has_damage()) detail::bond_pass<true, false>(part, bonds, y, f);
+            else detail::bond_pass<false, false>(part, bonds, y, f);
+        }
+    };
+    if constexpr (KernelProviderForBonds<Model, decltype(pass)>) model.with_kernel(pass, bonds);
+    else if constexpr (KernelProvider<Model, decltype(pass)>) model.with_kernel(pass);
+    return found;
+}
+// Whether hourglass_forces finds an hourglass part, without computing it.
+template <int D, class Model>
+bool has_hourglass_forces(const Model& model, const Bonds& bonds)
+{
+    bool found = false;
+    auto pass = [&](const auto& kernel) { found = HourglassKernel<std::decay_t<decltype(kernel)>, D>; };
+    if constexpr (KernelProviderForBonds<Model, decltype(pass)>) model.with_kernel(pass, bonds);
+    else if constexpr (KernelProvider<Model, decltype(pass)>) model.with_kernel(pass);
+    return found;
+}
+
 // f: internal force density at current positions y [N/m^3]; out: optional bond work (header).
 template <int D, class Model>
 void internal_force(Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f, const BondWork* out = nullptr)

@@ -93,4 +93,15 @@ concept DissipativeModel = requires(const M& m, std::size_t i) {
     { m.step_heat(i) } -> std::convertible_to<double>;
 };
 
+// The mechanical energy a DissipativeModel's last committed step dissipated at node i [J/m^3], heat
+// or not (the energy books of time/verlet.hpp): step_dissipation(i) where the model tells it apart
+// (plastic: all of sigma_y dlambda, of which beta_TQ becomes heat), else step_heat(i).
+template <class M>
+    requires DissipativeModel<M>
+double step_dissipation(const M& m, std::size_t i)
+{
+    if constexpr (requires { m.step_dissipation(i); }) return m.step_dissipation(i);
+    else return m.step_heat(i);
+}
+
 }  // namespace pd

@@ -35,6 +35,13 @@
 //   rate_pairing.end_of_step  the rate-form update pairs v with the end-of-step configuration x + u
 //     (Peridigm) instead of the mid-step one; then L = Fdot F^-1 is not skew for a rigid rotation.
 //   commit()  the trial history becomes the committed one (HistoryModel).
+//   track_release(true)  the energy books (time/verlet.hpp): an evaluation that breaks bonds adds the
+//     stored energy they release at its positions y, sum (W_i(y, bonds before) - W_i(y, bonds after)) V_i,
+//     to released_energy() [J]: after the force, the model's state is formed once more with the bonds
+//     before the break (recompute, point pass) for their energy, and again with the bonds after it
+//     (the same arithmetic: the state the force saw). A rate-form stress keeps its stress of the step.
+//   hourglass_force(f)  the hourglass part of the last evaluation's force (bond_loop.hpp
+//     hourglass_forces); false when the model has none.
 //   advance_heat(n, dt)  the heat component's thermal steps due after n mechanical steps of dt, then
 //     the release of the dissipated heat when n is a multiple of N_sync(MH) (none: no-op).
 // DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
@@ -63,6 +70,10 @@ concept DamageRule = requires(R& r, Bonds& b, const Field<D>& y, const Model& m)
     r.template bond_work<Model>(b);
     r.template record<Model>(m, b, y);
 };
+
+// A model with a stored-energy density, energy_density(bonds, y) [J/m^3 per node].
+template <class M, int D>
+concept HasEnergyDensity = requires(const M& m, const Bonds& b, const Field<D>& y) { m.energy_density(b, y); };
 
 // A part with its own checkpoint state: state(ar) visits it (core/state_archive.hpp).
 template <class T>
@@ -146,6 +157,25 @@ public:
 
     const Field<D>& positions() const { return y_; }  // y = x + u of the last evaluation [m]
 
+    // After an evaluation that broke `broke` bonds (the integrator calls it with track_release on): the
+    // energy the breaks released, and the intact flags for the next one. Out of line, so that the force
+    // evaluation compiles as without the books.
+    [[gnu::noinline]] void book_release(double dt, long broke)
+    {
+        if constexpr (HasEnergyDensity<Model, D>)
+            if (broke > 0 && intact_before_.size() == bonds.intact.size()) released_ += release(dt);
+        intact_before_ = bonds.intact;
+    }
+    void track_release(bool on)
+    {
+        if constexpr (!HasEnergyDensity<Model, D>)
+            if (on) throw std::invalid_argument("Scene: the energy books need a model with an energy density");
+        track_release_ = on;
+        if (on) intact_before_ = bonds.intact;  // the flags before the next evaluation's breaks
+    }
+    double released_energy() const { return released_; }  // [J] (track_release)
+    bool hourglass_force(Field<D>& f) const { return hourglass_forces(model, bonds, y_, f); }
+
     // The scene's part of a checkpoint: the intact flags, the positions of the last evaluation, the
     // damage rule's state, the heat component's and the model's. A model with history keeps its own
     // by state(ar) (and may rebuild(bonds, y) what its last evaluation derived from it); a rate-form
@@ -158,6 +188,8 @@ public:
         ar("scene.y", y_);
         ar("scene.y_mid", y_mid_);
         ar("scene.v_step", v_step_);
+        if (track_release_) ar("scene.released", released_);
+        if (track_release_ && !ar.saving()) intact_before_ = bonds.intact;
         if (rule_state_) rule_state_(ar);
         if (heat_) heat_->state(ar);
         if (!e_abs_.empty()) ar("heat.e_abs", e_abs_);
@@ -204,6 +236,33 @@ private:
         return broke;
     }
 
+    // The stored energy the last break released at y_ [J] (track_release, header).
+    double release(double dt)
+        requires HasEnergyDensity<Model, D>
+    {
+        const double after = stored_energy();
+        std::swap(bonds.intact, intact_before_);
+        form_state(dt);
+        const double before = stored_energy();
+        std::swap(bonds.intact, intact_before_);
+        form_state(dt);
+        return before - after;
+    }
+    void form_state(double dt)
+    {
+        if constexpr (BondDependentModel<Model>) model.recompute(bonds);
+        if constexpr (HistoryModel<Model, D>) model.point_pass(bonds, y_, dt);
+        else if constexpr (Model::has_point_pass) model.point_pass(bonds, y_);
+    }
+    double stored_energy() const
+        requires HasEnergyDensity<Model, D>
+    {
+        const std::vector<double> W = model.energy_density(bonds, y_);
+        double e = 0;
+        for (std::size_t i = 0; i < W.size(); ++i) e += W[i] * body.volume[i];
+        return e;
+    }
+
     Field<D> y_;
     Field<D> y_mid_, v_step_;  // rate form only, else empty: the configuration and velocity of its update
     std::function<long(Bonds&, const Field<D>&)> break_bonds_;
@@ -211,6 +270,9 @@ private:
     std::function<void(const Field<D>&)> record_;
     std::function<void(StateArchive&)> rule_state_;
     TemperatureField* heat_ = nullptr;
+    bool track_release_ = false;
+    double released_ = 0;                     // [J] (track_release)
+    std::vector<std::uint8_t> intact_before_;  // the intact flags before the last break (track_release)
     long nsync_mh_ = 1;          // N_sync(MH)
     std::vector<double> e_abs_;  // dissipated heat not yet released [J/m^3] (DissipativeModel with heat)
 

@@ -127,6 +127,11 @@ struct Correspondence {
     mutable std::vector<Mat> PKinv;   // P_i K_i^-1 [Pa/m^5 in 3D]
     mutable bool matrices_partial = false;  // chunk nodes' F, sigma, P, PKinv not written (node_matrices = false)
     std::vector<Mat> sigma_hat, R, V; // Flanagan-Taylor: unrotated stress [Pa], rotation, left stretch [-]
+    // Flanagan-Taylor: the stored energy as the integrated stress power [J/m^3 of the reference]: each
+    // update adds J (w(sigma_hat after) - w(sigma_hat before)), w = 1/2 sigma_hat : C^-1 : sigma_hat =
+    // tr^2/(18 K) + s_hat : s_hat/(4 G) with the moduli of the node's temperature, J = det F at the
+    // update's configuration (the discrete P : Fdot = J sigma : d).
+    std::vector<double> stress_work;
     std::vector<double> theta_n;      // Flanagan-Taylor with thermal expansion: theta^n of each node (header) [K]
     // P K^-1 [Pa/m^5] and F [-] per node for the bond kernel (3D, correspondence_simd.hpp: 24 doubles
     // per node, 64-byte aligned). The chunk path writes them only where the per-node kernels of that
@@ -170,6 +175,7 @@ struct Correspondence {
         }
         if (p.law == Law::flanagan_taylor) {
             sigma_hat.assign(b.nodes(), Mat::Zero());
+            stress_work.assign(b.nodes(), 0.0);
             R.assign(b.nodes(), Mat::Identity());
             V.assign(b.nodes(), Mat::Identity());
         }
@@ -363,14 +369,21 @@ struct Correspondence {
     }
 
     // Energy density W_i [J/m^3]; call after point_pass. Law::saint_venant_kirchhoff: the exact
-    // W = lambda tr(E)^2/2 + G E:E. Otherwise the bookkeeping value 1/2 sigma : eps, eps = sym(F) - I
-    // less the free thermal strain eps_i I (exact for Law::linear). Hourglass energy not included.
+    // W = lambda tr(E)^2/2 + G E:E. Law::linear: 1/2 sigma : eps, eps = sym(F) - I less the free
+    // thermal strain eps_i I (exact). Law::flanagan_taylor: stress_work, the stress power J sigma : d
+    // that the force's work supplies, integrated over the updates (a hypo-elastic law has no W(F);
+    // 1/2 sigma : eps(F) does not follow the integrated stress). Hourglass energy not included (its
+    // work is integrated, time/verlet.hpp).
     template <int Dy>
     std::vector<double> energy_density(const Bonds& b, const Field<Dy>&) const
     {
         sync_node_matrices();
         std::vector<double> W(b.nodes(), 0.0);
         for (std::size_t i = 0; i < b.nodes(); ++i) {
+            if (par.law == Law::flanagan_taylor) {
+                W[i] = stress_work[i];
+                continue;
+            }
             Mat eps = par.law == Law::saint_venant_kirchhoff ? laws::green_lagrange(F[i]) : laws::small_strain(F[i]);
             eps.diagonal().array() -= thermal.strain(i);  // the mechanical strain (0 without thermal expansion)
             const Mat stress = par.law == Law::saint_venant_kirchhoff ? svk_stress(F[i]) : sigma[i];
@@ -381,6 +394,14 @@ struct Correspondence {
 
     // RateFormModel (models/rate_form.hpp): the stress of this instance needs update_stress each step.
     bool rate_form() const { return par.law == Law::flanagan_taylor; }
+    // w of stress_work: the elastic energy of an unrotated stress with the moduli m [J/m^3].
+    static double elastic_energy(const Mat& sh, const Elastic& m)
+    {
+        const double p3 = sh.trace();  // 3 x the mean stress [Pa]
+        Mat s = sh;
+        s.diagonal().array() -= p3 / 3;
+        return p3 * p3 / (18 * m.K) + (s.array() * s.array()).sum() / (4 * m.G);
+    }
     // Back to the reference state of the rate form (sigma_hat = sigma = 0, R = V = I): after Peridigm's
     // first evaluation (scene.hpp, RateFormPairing::initial_velocity_step).
     void reset_rate_state();

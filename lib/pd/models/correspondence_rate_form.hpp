@@ -15,6 +15,7 @@ void Correspondence<D>::reset_rate_state()
     std::fill(R.begin(), R.end(), Mat::Identity());
     std::fill(V.begin(), V.end(), Mat::Identity());
     std::fill(theta_n.begin(), theta_n.end(), thermal.theta_ref);
+    std::fill(stress_work.begin(), stress_work.end(), 0.0);
 }
 
 template <int D>
@@ -22,6 +23,7 @@ void Correspondence<D>::rate_state(StateArchive& ar)
 {
     ar.blocks("correspondence.sigma_hat", sigma_hat), ar.blocks("correspondence.R", R), ar.blocks("correspondence.V", V);
     ar.blocks("correspondence.sigma", sigma);
+    ar("correspondence.stress_work", stress_work);
     if (!theta_n.empty()) ar("correspondence.theta_n", theta_n);
 }
 
@@ -61,8 +63,10 @@ void Correspondence<D>::update_stress(const Bonds& b, const Field<Dy>& y, const 
         }
         if (Kinv[i].isZero(0)) return;
         double Ki = K, Gi = G;
+        double w0 = elastic_energy(sigma_hat[i], par.material);  // [J/m^3] (stress_work)
         if (tdep_.material) {  // (4.44)
             const Elastic m0 = tdep_.material(th0), m1 = tdep_.material(th1);
+            w0 = elastic_energy(sigma_hat[i], m0);
             Ki = m1.K, Gi = m1.G;
             const double pH = sigma_hat[i].trace() / 3;
             sigma_hat[i] *= m1.G / m0.G;
@@ -71,6 +75,7 @@ void Correspondence<D>::update_stress(const Bonds& b, const Field<Dy>& y, const 
         F[i] = N[0] * Kinv[i];
         sigma[i] = laws::flanagan_taylor_step(F[i], N[1] * Kinv[i], R[i], V[i], sigma_hat[i], Ki, Gi, dt,  // step 1: Fdot = N[1] K^-1
                                               par.rotation, d_eps_th);
+        stress_work[i] += F[i].determinant() * (elastic_energy(sigma_hat[i], {.K = Ki, .G = Gi}) - w0);
     });
 }
 

@@ -31,7 +31,7 @@ namespace pd {
 struct Dissipation {
     enum class Kind { none, plastic, viscoelastic };
     Kind kind = Kind::none;
-    laws::JohnsonCook law;  // plastic: the flow stress (5.64); J2 with linear hardening is C = 0, m = 0, n = 1
+    laws::JohnsonCook law{};  // plastic: the flow stress (5.64); J2 with linear hardening is C = 0, m = 0, n = 1
     double beta_TQ = 0.9;   // plastic: Taylor-Quinney fraction of the plastic work that becomes heat [-]
     double gamma_b = 1;     // viscoelastic: G_b / G of the Maxwell branch [-]
     double tau_b = 1;       // viscoelastic: relaxation time [s]

@@ -60,6 +60,7 @@ public:
             if (theta_n_c_.size() != model.theta_n.size()) theta_n_c_ = model.theta_n;  // expansion attached since the last commit
             model.theta_n = theta_n_c_;
         }
+        if constexpr (has_stress_work) model.stress_work = stress_work_c_;
         y_m_.resize(y.size());
         v_.resize(y.size());
         for (int d = 0; d < D; ++d)
@@ -91,6 +92,7 @@ public:
         ar(name + ".y_c", y_c_);
         ar.blocks(name + ".sigma_hat_c", sigma_hat_c_), ar.blocks(name + ".R_c", R_c_), ar.blocks(name + ".V_c", V_c_);
         if constexpr (has_theta_n) ar(name + ".theta_n_c", theta_n_c_);  // empty without thermal expansion
+        if constexpr (has_stress_work) ar(name + ".stress_work_c", stress_work_c_);
     }
 
     Vec<D> bond_force(std::size_t i, std::int64_t k, int j, const Vec<D>& Y) const { return model.bond_force(i, k, j, Y); }
@@ -100,9 +102,12 @@ private:
     // (Correspondence::theta_n): committed and restored with the stress, so that every trial of a step
     // takes the whole increment theta - theta^n of the committed state.
     static constexpr bool has_theta_n = requires(Model& m) { m.theta_n; };
+    // Its stored energy as the integrated stress power (Correspondence::stress_work): committed and
+    // restored with the stress as well.
+    static constexpr bool has_stress_work = requires(Model& m) { m.stress_work; };
     Field<D> y_c_, y_m_, v_;
     std::decay_t<decltype(std::declval<Model&>().sigma_hat)> sigma_hat_c_, R_c_, V_c_;
-    std::vector<double> theta_n_c_;
+    std::vector<double> theta_n_c_, stress_work_c_;
 
     void store()
     {
@@ -110,6 +115,7 @@ private:
         R_c_ = model.R;
         V_c_ = model.V;
         if constexpr (has_theta_n) theta_n_c_ = model.theta_n;
+        if constexpr (has_stress_work) stress_work_c_ = model.stress_work;
     }
 };
 

@@ -60,6 +60,7 @@ struct PlasticCorrespondence {
     const ThermalExpansion& thermal_expansion() const { return thermal; }
 
     double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
+    double step_dissipation(std::size_t i) const { return pts.step_dissipation(i); }
     void commit()
     {
         hist_c = hist;
@@ -126,6 +127,7 @@ struct PlasticCorrespondence {
     template <class Pass>
     void with_kernel(Pass&& pass, const Bonds& b) const { model.with_kernel(pass, b); }
     Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }
+    void sync_node_matrices() const { model.sync_node_matrices(); }  // hourglass_forces (bond_loop.hpp)
 
 private:
     ThermalExpansion thermal;  // header; inactive by default

@@ -55,6 +55,7 @@ struct PlasticLPS {
     void set_thermal_expansion(const ThermalExpansion& t) { lps.set_thermal_expansion(t); }
     const ThermalExpansion& thermal_expansion() const { return lps.thermal_expansion(); }
     double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
+    double step_dissipation(std::size_t i) const { return pts.step_dissipation(i); }
     void commit()
     {
         edp_c = edp;

@@ -63,6 +63,7 @@ struct PlasticPALS {
     }
     const ThermalExpansion& thermal_expansion() const { return pals.thermal_expansion(); }
     double step_heat(std::size_t i) const { return pts.step_heat(i); }  // DissipativeModel (plastic_points.hpp)
+    double step_dissipation(std::size_t i) const { return pts.step_dissipation(i); }
     void commit()
     {
         edp_c = edp;

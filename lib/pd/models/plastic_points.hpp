@@ -39,10 +39,12 @@ struct PlasticPoints {
     std::vector<double> dlambda;          // trial plastic multiplier of the step [-]
     std::vector<double> sigma_eff;        // trial end-of-step von Mises stress [Pa]
     std::vector<double> heat_source;      // beta_TQ sigma_y dlambda / dt [W/m^3]
+    std::vector<double> plastic_work;     // trial sigma_y dlambda of the step [J/m^3] (not checkpointed: the next pass sets it)
 
     PlasticPoints() = default;
     PlasticPoints(const laws::JohnsonCook& law, double beta_TQ, std::size_t n)
-        : law(law), beta_TQ(beta_TQ), ep_c(n, 0.0), ep(n, 0.0), dlambda(n, 0.0), sigma_eff(n, 0.0), heat_source(n, 0.0)
+        : law(law), beta_TQ(beta_TQ), ep_c(n, 0.0), ep(n, 0.0), dlambda(n, 0.0), sigma_eff(n, 0.0), heat_source(n, 0.0),
+          plastic_work(n, 0.0)
     {
         law.validate();
         if (!(beta_TQ >= 0 && beta_TQ <= 1)) throw std::invalid_argument("PlasticPoints: beta_TQ must lie in [0, 1]");
@@ -82,10 +84,14 @@ struct PlasticPoints {
         ep[i] = ep_c[i] + r.dlambda;
         sigma_eff[i] = r.sigma_eff;
         heat_source[i] = dt > 0 ? beta_TQ * r.dissipation / dt : 0.0;  // an instantaneous step: no power
+        plastic_work[i] = r.dissipation;
     }
     void commit() { ep_c = ep; }
     // Heat of the last step at node i, beta_TQ sigma_y dlambda [J/m^3] (DissipativeModel).
     double step_heat(std::size_t i) const { return heat_source[i] * dt; }
+    // All the plastic work of the last step at node i, sigma_y dlambda [J/m^3] (DissipativeModel;
+    // 1 - beta_TQ of it is stored cold work, lost to the mechanics all the same).
+    double step_dissipation(std::size_t i) const { return plastic_work[i]; }
     // Its part of a checkpoint (core/state_archive.hpp).
     void state(StateArchive& ar)
     {

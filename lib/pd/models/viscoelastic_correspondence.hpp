@@ -114,9 +114,22 @@ public:
 
     template <class Pass>
     void with_kernel(Pass&& pass, const Bonds& b) const { model.with_kernel(pass, b); }
+    void sync_node_matrices() const { model.sync_node_matrices(); }  // hourglass_forces (bond_loop.hpp)
     Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }
     template <int D>
-    std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const { return model.energy_density(b, y); }
+    // The equilibrium part's energy (Correspondence, Flanagan-Taylor: from sigma_hat) plus the Maxwell
+    // branch's, r : r / (4 G_b) with its stress r = gamma_b s_hat - q [J/m^3].
+    std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const
+    {
+        std::vector<double> W = model.energy_density(b, y);
+        const double Gb = gamma_b * model.par.material.G;
+        if (Gb > 0)
+            for (std::size_t i = 0; i < W.size(); ++i) {
+                const Mat r = gamma_b * s_hat[i] - q[i];
+                W[i] += (r.array() * r.array()).sum() / (4 * Gb);
+            }
+        return W;
+    }
 
     // Viscous stress gamma_b s_hat - q of node i, unrotated [Pa].
     Mat viscous_stress(std::size_t i) const { return gamma_b * s_hat[i] - q[i]; }
