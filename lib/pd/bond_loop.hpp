@@ -324,6 +324,17 @@ void stretch_sums(const Bonds& b, const Field<D>& y, const TranslatedRuns& runs,
     parallel_for(b.nodes(), plain);
 }
 
+// Calls pass(kernel) with the model's kernel (KernelProvider[ForBonds], kernel_concepts.hpp), or
+// with the model itself when it is its own kernel.
+template <class Model, class Pass>
+void with_model_kernel(const Model& model, const Bonds& bonds, Pass&& pass)
+{
+    using P = std::remove_reference_t<Pass>;
+    if constexpr (KernelProviderForBonds<Model, P>) model.with_kernel(pass, bonds);
+    else if constexpr (KernelProvider<Model, P>) model.with_kernel(pass);
+    else pass(model);
+}
+
 // The bond pass alone, with the model's state of its last point pass: f [N/m^3] and, when work is
 // given (damaged scenes only), the bond work of the pass (header).
 template <int D, class Model>
@@ -339,16 +350,15 @@ void bond_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Fiel
         else
             detail::bond_pass<false, false>(kernel, bonds, y, f);
     };
-    if constexpr (KernelProviderForBonds<Model, decltype(pass)>) model.with_kernel(pass, bonds);
-    else if constexpr (KernelProvider<Model, decltype(pass)>) model.with_kernel(pass);
-    else pass(model);
+    with_model_kernel(model, bonds, pass);
 }
 
 // The hourglass part of the internal force density [N/m^3]: the kernel's hourglass_force (a
 // HourglassKernel, kernel_concepts.hpp) summed over the intact bonds of each node by the per-node pass,
-// with the model's state of its last point pass. Returns false, f untouched, when the model's kernel
-// has none (no hourglass control, or C_hg = 0). The hourglass force is no gradient of an energy, so
-// the energy books integrate its work from this force (time/verlet.hpp).
+// with the model's state of its last point pass, into *f (null: only whether there is one). Returns
+// false, f untouched, when the model's kernel has none (no hourglass control, or C_hg = 0). The
+// hourglass force is no gradient of an energy, so the energy books integrate its work from this force
+// (time/verlet.hpp).
 namespace detail {
 // The hourglass term of kernel k alone, as a non-ordinary kernel of the per-node bond pass (its lanes).
 template <class K, int D>
@@ -360,32 +370,21 @@ struct HourglassPart {
 }  // namespace detail
 
 template <int D, class Model>
-bool hourglass_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>& f)
+bool hourglass_forces(const Model& model, const Bonds& bonds, const Field<D>& y, Field<D>* f)
 {
     bool found = false;
-    auto pass = [&](const auto& kernel) {
+    with_model_kernel(model, bonds, [&](const auto& kernel) {
         using K = std::decay_t<decltype(kernel)>;
         if constexpr (HourglassKernel<K, D>) {
             found = true;
+            if (!f) return;
             if constexpr (requires { model.sync_node_matrices(); }) model.sync_node_matrices();  // F of every node
-            if (f.size() != y.size()) f.resize(y.size());
+            if (f->size() != y.size()) f->resize(y.size());
             const detail::HourglassPart<K, D> part{kernel};
-            if (bonds.has_damage()) detail::bond_pass<true, false>(part, bonds, y, f);
-            else detail::bond_pass<false, false>(part, bonds, y, f);
+            if (bonds.has_damage()) detail::bond_pass<true, false>(part, bonds, y, *f);
+            else detail::bond_pass<false, false>(part, bonds, y, *f);
         }
-    };
-    if constexpr (KernelProviderForBonds<Model, decltype(pass)>) model.with_kernel(pass, bonds);
-    else if constexpr (KernelProvider<Model, decltype(pass)>) model.with_kernel(pass);
-    return found;
-}
-// Whether hourglass_forces finds an hourglass part, without computing it.
-template <int D, class Model>
-bool has_hourglass_forces(const Model& model, const Bonds& bonds)
-{
-    bool found = false;
-    auto pass = [&](const auto& kernel) { found = HourglassKernel<std::decay_t<decltype(kernel)>, D>; };
-    if constexpr (KernelProviderForBonds<Model, decltype(pass)>) model.with_kernel(pass, bonds);
-    else if constexpr (KernelProvider<Model, decltype(pass)>) model.with_kernel(pass);
+    });
     return found;
 }
 

@@ -40,8 +40,8 @@
 //     to released_energy() [J]: after the force, the model's state is formed once more with the bonds
 //     before the break (recompute, point pass) for their energy, and again with the bonds after it
 //     (the same arithmetic: the state the force saw). A rate-form stress keeps its stress of the step.
-//   hourglass_force(f)  the hourglass part of the last evaluation's force (bond_loop.hpp
-//     hourglass_forces); false when the model has none.
+//   hourglass_force(&f)  the hourglass part of the last evaluation's force (bond_loop.hpp
+//     hourglass_forces); false when the model has none (null: only that answer).
 //   advance_heat(n, dt)  the heat component's thermal steps due after n mechanical steps of dt, then
 //     the release of the dissipated heat when n is a multiple of N_sync(MH) (none: no-op).
 // DamageRule protocol: long break_bonds(Bonds&, const Field<D>& y); template <class Model> const
@@ -74,6 +74,16 @@ concept DamageRule = requires(R& r, Bonds& b, const Field<D>& y, const Model& m)
 // A model with a stored-energy density, energy_density(bonds, y) [J/m^3 per node].
 template <class M, int D>
 concept HasEnergyDensity = requires(const M& m, const Bonds& b, const Field<D>& y) { m.energy_density(b, y); };
+
+// The stored energy of a body at y, sum W_i V_i [J] (the model's state must be at y).
+template <int D, class Model>
+double stored_energy(const Model& model, const Bonds& bonds, const Body<D>& body, const Field<D>& y)
+{
+    const std::vector<double> W = model.energy_density(bonds, y);
+    double e = 0;
+    for (std::size_t i = 0; i < W.size(); ++i) e += W[i] * body.volume[i];
+    return e;
+}
 
 // A part with its own checkpoint state: state(ar) visits it (core/state_archive.hpp).
 template <class T>
@@ -174,7 +184,7 @@ public:
         if (on) intact_before_ = bonds.intact;  // the flags before the next evaluation's breaks
     }
     double released_energy() const { return released_; }  // [J] (track_release)
-    bool hourglass_force(Field<D>& f) const { return hourglass_forces(model, bonds, y_, f); }
+    bool hourglass_force(Field<D>* f) const { return hourglass_forces(model, bonds, y_, f); }  // null f: whether there is one
 
     // The scene's part of a checkpoint: the intact flags, the positions of the last evaluation, the
     // damage rule's state, the heat component's and the model's. A model with history keeps its own
@@ -257,10 +267,7 @@ private:
     double stored_energy() const
         requires HasEnergyDensity<Model, D>
     {
-        const std::vector<double> W = model.energy_density(bonds, y_);
-        double e = 0;
-        for (std::size_t i = 0; i < W.size(); ++i) e += W[i] * body.volume[i];
-        return e;
+        return pd::stored_energy(model, bonds, body, y_);
     }
 
     Field<D> y_;

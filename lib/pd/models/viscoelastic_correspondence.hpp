@@ -116,9 +116,9 @@ public:
     void with_kernel(Pass&& pass, const Bonds& b) const { model.with_kernel(pass, b); }
     void sync_node_matrices() const { model.sync_node_matrices(); }  // hourglass_forces (bond_loop.hpp)
     Vec<3> bond_force(std::size_t i, std::int64_t k, int j, const Vec<3>& Y) const { return model.bond_force(i, k, j, Y); }
-    template <int D>
-    // The equilibrium part's energy (Correspondence, Flanagan-Taylor: from sigma_hat) plus the Maxwell
+    // The equilibrium part's energy (Correspondence, Flanagan-Taylor: its stress_work) plus the Maxwell
     // branch's, r : r / (4 G_b) with its stress r = gamma_b s_hat - q [J/m^3].
+    template <int D>
     std::vector<double> energy_density(const Bonds& b, const Field<D>& y) const
     {
         std::vector<double> W = model.energy_density(b, y);

@@ -61,12 +61,11 @@ Energies body_energies(Model& model, const Bonds& bonds, const Body<D>& body, co
                        const std::vector<double>& rho, double external_work)
 {
     Energies e;
-    const std::vector<double> W = model.energy_density(bonds, y);
+    e.strain = stored_energy(model, bonds, body, y);
     for (std::size_t i = 0; i < body.size(); ++i) {
         double v2 = 0;
         for (int d = 0; d < D; ++d) v2 += v.c[d][i] * v.c[d][i];
         e.kinetic += 0.5 * rho[i] * v2 * body.volume[i];
-        e.strain += W[i] * body.volume[i];
     }
     e.external_work = external_work;
     return e;
@@ -121,7 +120,7 @@ public:
         evaluate(0.0, true);  // rate form: the pseudo step from the reference (header), or scene.rate_pairing
         scene.commit();
         add_dissipation();
-        if (hourglass_) scene.hourglass_force(fhg_);
+        if (hourglass_) scene.hourglass_force(&fhg_);
         initial_total_ = 0;
         const Energies e = energies();
         initial_energy_ = e.kinetic + e.strain;
@@ -171,7 +170,7 @@ public:
         evaluate(dt);
         scene.commit();
         add_dissipation();
-        if (hourglass_) scene.hourglass_force(fhg_);
+        if (hourglass_) scene.hourglass_force(&fhg_);
         for (int d = 0; d < D; ++d)
             for (std::size_t i = 0; i < n; ++i) {
                 if (constrained_[i * D + d]) continue;
@@ -262,8 +261,7 @@ private:
         for (std::size_t i = 0; i < scene.body.size(); ++i) mass += rho[i] * scene.body.volume[i];
         energy_floor_ = 0.5 * mass * roundoff_speed * roundoff_speed;
         scene.track_release(energy_books);
-        hourglass_ = energy_books && has_hourglass_forces<D>(scene.model, scene.bonds);
-        if (hourglass_) fhg_prev_.resize(scene.body.size());
+        hourglass_ = energy_books && scene.hourglass_force(nullptr);
     }
 
     // The work the committed step dissipated (DissipativeModel), into the books.
