@@ -6,8 +6,8 @@
 // hypo-elastic one, Littlewood hourglass --hourglass C; --conventions peridigm: Peridigm's forms,
 // problems/pd_run_conventions.hpp) (single material; block ids are passed through to the VTU files only), bond
 // family |xi| <= delta, velocity Verlet (pd::Explicit), fixed points held at their initial
-// displacement, dt default = 0.5 x the Silling-Askari critical step with the PMB spring
-// c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14). --s0: critical-stretch bond breaking (spec/000c sec. 2.2)
+// displacement, dt default = 0.5 x the smaller of the Silling-Askari critical step with the PMB spring
+// c omega / |xi| (spec/000a sec. 3.3.2, eq. 3.14) and 2/omega_max of the body (pd/time/explicit_step.hpp). --s0: critical-stretch bond breaking (spec/000c sec. 2.2)
 // with the point damage phi in the state files (pd/damage/critical_stretch.hpp).
 // Heat conduction (issue 4, problems/pd_run_heat.hpp): --heat agwai|correspondence adds a temperature
 // field (columns T0, T_fixed) integrated by explicit/implicit Euler or CVODE; --mechanics off runs it alone.
@@ -68,23 +68,15 @@ int run(Run cfg, const pd::io::PointCloud& pc)
         return integrate_heat<D>(cfg, pc, *heat);
     }
 
-    // Silling-Askari (3.14) with the PMB spring c omega / |xi| (the stand-in for LPS too), times
-    // 1 + gamma_b for a standard linear solid: its instantaneous shear modulus is G (1 + gamma_b).
+    // The step (pd/time/explicit_step.hpp): 0.5 x the smaller of Silling-Askari (3.14) with the PMB
+    // spring c omega / |xi| (times 1 + gamma_b for a standard linear solid: its instantaneous shear
+    // modulus is G (1 + gamma_b)) and 2 / omega_max of the model's body, chosen once the model is built
+    // (choose_step, pd_run_integrate.hpp).
     const pd::PMB::Params pmb{.material = cfg.material, .dim = D, .plane = cfg.plane, .measure = cfg.measure};
     const bool viscous = cfg.dissipation.kind == pd::Dissipation::Kind::viscoelastic;
     const double c = pd::PMB::micromodulus(pmb, bonds.influence, bonds.delta) * (viscous ? 1 + cfg.dissipation.gamma_b : 1.0);
-    const pd::CriticalStep crit = pd::critical_step_silling_askari(bonds, cfg.rho, c);
-    if (std::isnan(cfg.dt)) {
-        if (!std::isfinite(crit.dt)) fail("option --dt is required: no point has a bond within --delta");
-        cfg.dt = dt_safety * crit.dt;
-        std::printf("dt = %.17g s (%.2g x Silling-Askari critical step %.6g s at node %d)\n", cfg.dt, dt_safety, crit.dt, crit.node);
-    } else {
-        std::printf("dt = %.17g s (given; Silling-Askari critical step %.6g s, ratio %.3g)\n", cfg.dt, crit.dt, cfg.dt / crit.dt);
-        if (cfg.dt > crit.dt) std::printf("warning: --dt exceeds the Silling-Askari critical step; the run may go unstable\n");
-    }
-    if (heat && cfg.heat.nsync_mk > 0) heat->follow_mechanics(cfg.heat.nsync_mk, cfg.dt);
-    std::fflush(stdout);
-
+    if (std::isnan(cfg.dt) && !std::isfinite(pd::critical_step_silling_askari(bonds, cfg.rho, c).dt))
+        fail("option --dt is required: no point has a bond within --delta");
     // The model by name (models/registry.hpp); the surface correction of PMB (reference: its own
     // bulk energy) or LPS (reference: the classical energy); none: no change.
     const Conventions& cv = cfg.conventions;
@@ -99,6 +91,7 @@ int run(Run cfg, const pd::io::PointCloud& pc)
             if (cfg.model == "lps")
                 pd::apply_surface_correction(model, body, bonds, cfg.surface,
                                              {.reference = pd::SurfaceCorrectionOptions::Reference::classical});
+        choose_step(cfg, model, bonds, body, c, heat.get());
         return integrate<D>(cfg, pc, body, bonds, model, heat.get());
     };
     if constexpr (D >= 2)  // the inelastic models (pd_run_dissipation.hpp)
@@ -135,7 +128,7 @@ int main(int argc, char** argv)
     const std::string& plane = opt.add_string("plane", "stress", "2D reduction (dim 2 only)", {"stress", "strain"});
     const double& thickness = opt.add("thickness", 1.0, "2D thickness implied by the volumes (dim 2 only)", "m");
     const double& area = opt.add("area", 1.0, "1D cross-section implied by the volumes (dim 1 only)", "m^2");
-    const double& dt = opt.add("dt", automatic, "time step (default 0.5 x Silling-Askari critical step)", "s");
+    const double& dt = opt.add("dt", automatic, "time step (default 0.5 x the smaller of the Silling-Askari step and 2/omega_max)", "s");
     const int& steps = opt.add_int("steps", 1000, "number of time steps");
     const std::string& out_steps = opt.add_string("output-steps", "", "steps written as state_stepNNNN.csv, e.g. 0,100,400 (default: last step; none: no state)");
     const int& energy_every = opt.add_int("energy-every", 10, "energy.csv row every k steps (and at the last step)");

@@ -11,6 +11,8 @@
 #include "pd/core/material.hpp"
 #include "pd/models/dissipative_registry.hpp"
 #include "pd/models/surface_correction.hpp"
+#include "pd/time/critical_step.hpp"
+#include "pd/time/explicit_step.hpp"
 #include "pd/time/verlet.hpp"
 #include "pd_run_checkpoint.hpp"
 #include "pd_run_conventions.hpp"
@@ -28,7 +30,7 @@
 namespace pd_run {
 
 constexpr const char* program = "pd_run";
-constexpr double dt_safety = 0.5;  // Silling & Askari's normal safety factor (spec/000a sec. 3.3.2)
+constexpr double dt_safety = pd::silling_askari_safety;  // Silling & Askari's normal safety factor (spec/000a sec. 3.3.2)
 
 struct Run {
     std::string model;
@@ -162,6 +164,30 @@ int integrate_heat(const Run& cfg, const pd::io::PointCloud& pc, HeatRun& heat)
     report_heat(heat);
     std::printf("%s: done, %ld thermal steps in %.3g s; wrote %s\n", program, cfg.steps, timer.seconds(), cfg.out.string().c_str());
     return 0;
+}
+
+// The mechanical step (pd/time/explicit_step.hpp): without --dt, dt_safety x the smaller of the
+// Silling-Askari step with the PMB micromodulus c and 2 / omega_max of the model's body; printed with
+// the reason, and a given --dt compared with it. Then the heat follows the step (--nsync-mk).
+template <int D, class Model>
+void choose_step(Run& cfg, Model& model, const pd::Bonds& bonds, const pd::Body<D>& body, double c, HeatRun* heat)
+{
+    const pd::ExplicitStep s = pd::explicit_step(model, bonds, body, cfg.rho, c, dt_safety);
+    const double crit = s.mode_limits ? s.mode_step : s.silling_askari.dt;  // [s]
+    if (std::isnan(cfg.dt)) {
+        cfg.dt = s.dt;
+        if (s.mode_limits)
+            std::printf("dt = %.17g s (%.2g x 2/omega_max = %.6g s of the body's highest mode, below the Silling-Askari critical step "
+                        "%.6g s at node %d)\n", cfg.dt, dt_safety, s.mode_step, s.silling_askari.dt, s.silling_askari.node);
+        else
+            std::printf("dt = %.17g s (%.2g x Silling-Askari critical step %.6g s at node %d; highest mode 2/omega_max = %.6g s)\n", cfg.dt,
+                        dt_safety, s.silling_askari.dt, s.silling_askari.node, s.mode_step);
+    } else {
+        std::printf("dt = %.17g s (given; critical step %.6g s, ratio %.3g)\n", cfg.dt, crit, cfg.dt / crit);
+        if (cfg.dt > crit) std::printf("warning: --dt exceeds the critical step; the run may go unstable\n");
+    }
+    if (heat && cfg.heat.nsync_mk > 0) heat->follow_mechanics(cfg.heat.nsync_mk, cfg.dt);
+    std::fflush(stdout);
 }
 
 // 4.-5. Mechanics, with the heat run (if any) as the scene's heat component (pd/scene.hpp): before

@@ -167,3 +167,21 @@ TEST(SCF, DamageAndThreads)
     EXPECT_GT(shear_correction_factor(b, body.x, 3)[mid], s1[mid]);
     EXPECT_THROW(shear_correction_factor(b, body.x, 2), std::invalid_argument);  // dim != D
 }
+
+// A family that no probe shear stretches to first order (its only intact bonds along x: every probe
+// plane XY, ZX, YZ changes their length by O(gamma^2) only) has no shear mode to correct: SCF = 1,
+// as for an empty family (before the rule: SCF ~ 1/gamma^2 = 1e12, and alpha with it).
+TEST(SCF, FamilyThatNoShearStretchesGetsOne)
+{
+    const double dx = 1e-3;
+    auto body = box<3>({{0, 0, 0}}, {{7 * dx, 7 * dx, 7 * dx}}, dx);
+    Bonds b = build_bonds(body, 3 * dx);
+    b.enable_damage();
+    const int mid = 3 + 3 * 7 + 3 * 49;
+    for (std::int64_t k = b.begin(mid); k < b.end(mid); ++k) {
+        const int j = b.partner[k];
+        if (body.x.c[1][j] != body.x.c[1][mid] || body.x.c[2][j] != body.x.c[2][mid]) b.break_pair(k);
+    }
+    EXPECT_EQ(shear_correction_factor(b, body.x, 3, scf_gamma, true)[mid], 1.0);
+    EXPECT_EQ(shear_correction_factor(b, body.x, 3)[mid], 1.0);
+}

@@ -52,3 +52,13 @@ TEST(StabilitySweep, AllStableDoublesUntilUnstableAndNoThresholdIfNone)
     const auto none = io::stability_sweep({0.1}, run_oscillator, 1.0, 0.01);  // never beyond 1
     EXPECT_TRUE(std::isnan(none.threshold));
 }
+
+TEST(StabilitySweep, AllUnstableHalvesUntilStableWhenAllowed)
+{
+    const auto r = io::stability_sweep({6.0}, run_oscillator, 8.0, 0.01, 0.1);  // 6 -> 3 -> 1.5, then bisection
+    EXPECT_NEAR(r.threshold, 2.0, 0.03);
+    EXPECT_EQ(r.points[2].dt_factor, 1.5);
+    const auto old = io::stability_sweep({6.0}, run_oscillator, 8.0, 0.01);  // no min_factor: no search downwards
+    EXPECT_TRUE(std::isnan(old.threshold));
+    EXPECT_EQ(old.points.size(), 1u);
+}

@@ -4,11 +4,12 @@
 //
 // The driver supplies run(factor) -> StabilityPoint (one short run, e.g. with pd::Explicit catching
 // pd::Unstable). Threshold search: the lowest unstable factor of the sweep, or, when every sweep
-// factor is stable, the factor doubled until a run is unstable (at most max_factor); then bisection
-// between the highest stable and the lowest unstable factor until the bracket is below rel_tol of
-// it. The threshold is the bracket midpoint (NaN if nothing up to max_factor is unstable, or if
-// the smallest factor is already unstable). This assumes one threshold (stable below, unstable
-// above), as von Neumann analysis predicts for velocity Verlet on a linear system.
+// factor is stable, the factor doubled until a run is unstable (at most max_factor); when every
+// sweep factor is unstable, the factor halved until a run is stable (at least min_factor; default
+// 0: no search downwards); then bisection between the highest stable and the lowest unstable factor
+// until the bracket is below rel_tol of it. The threshold is the bracket midpoint (NaN if nothing up
+// to max_factor is unstable, or nothing down to min_factor is stable). This assumes one threshold
+// (stable below, unstable above), as von Neumann analysis predicts for velocity Verlet on a linear system.
 //
 //     auto result = pd::io::stability_sweep({0.5, 0.7, 0.9, 1.1, 1.3}, run, 8.0, 0.005);
 //     pd::io::print_stability(std::cout, "lps", result.points);
@@ -46,7 +47,7 @@ struct StabilityResult {
 
 inline StabilityResult stability_sweep(const std::vector<double>& factors,
                                        const std::function<StabilityPoint(double)>& run,
-                                       double max_factor, double rel_tol)
+                                       double max_factor, double rel_tol, double min_factor = 0)
 {
     StabilityResult r;
     double lo = 0, hi = std::numeric_limits<double>::infinity();  // highest stable, lowest unstable
@@ -58,6 +59,7 @@ inline StabilityResult stability_sweep(const std::vector<double>& factors,
     };
     for (double f : factors) record(f, "sweep");
     while (!std::isfinite(hi) && lo > 0 && 2 * lo <= max_factor) record(2 * lo, "search");
+    while (lo == 0 && std::isfinite(hi) && min_factor > 0 && hi / 2 >= min_factor) record(hi / 2, "search");
     if (!std::isfinite(hi) || lo == 0 || lo > hi) return r;
     while (hi - lo > rel_tol * hi) record(0.5 * (lo + hi), "search");
     r.threshold = 0.5 * (lo + hi);

@@ -10,16 +10,20 @@
 namespace pd {
 
 // A damaged pass's sums of node i (the point pass, the Flanagan-Taylor update): N over the NZ fields,
-// and K^-1 and m formed again only where the family's intact flags changed since (k_formed_).
-// (Inlined as the code it replaced, so that -O3 contracts the same operations: bit-identical results.)
+// and K^-1 and m formed again only where the family's intact flags changed since (k_formed_). K and m
+// come from their own sums (NZ = 0), whichever pass forms them: summed beside N, their lane layout
+// depended on NZ, and with AVX-512 the rounding did too, so a K^-1 formed by the Flanagan-Taylor
+// update (NZ = 2) differed in its last bits from the one a restart's point pass (NZ = 1) forms, and a
+// resumed run was not bit for bit the uninterrupted one (tests/test_checkpoint.cpp).
 template <int D>
 template <int NZ>
 inline void Correspondence<D>::damaged_sums(const Bonds& b, std::size_t i, const std::array<const Field<D>*, NZ>& z, Mat* N)
 {
-    if (k_formed_.unchanged(b, i)) return family_sums<true, false, NZ>(b, i, z, N, nullptr, nullptr);
+    family_sums<true, false, NZ>(b, i, z, N, nullptr, nullptr);
+    if (k_formed_.unchanged(b, i)) return;
     Mat K;
     Col m;
-    family_sums<true, true, NZ>(b, i, z, N, &K, &m);
+    family_sums<true, true, 0>(b, i, {}, nullptr, &K, &m);
     Kinv[i] = inverse_or_zero(K);
     for (int d = 0; d < D; ++d) m_xi.c[d][i] = m(d);
     k_formed_.formed(b, i);

@@ -29,7 +29,12 @@
 // array, theta and N sum only intact bonds (Peridigm's copy ignores damage), while m_i sums the
 // whole family as LPS's m_i does under its reference rule, or only the intact bonds with
 // intact_m = true (LPS's default intact rule, lps.hpp). 1D has no deviatoric part (a_1 = 0): SCF = 1.
-// A node whose N_max is 0 (no intact bond, or m_i = 0) gets SCF = 1.
+// A node whose N_max is 0 (no intact bond, or m_i = 0) gets SCF = 1, and so does a node whose N_max
+// lies below scf_degenerate times the full-ball value 4 gamma^2 m_i / a_D: a family left with a few
+// bonds that no probe shear stretches to first order in gamma (bonds along one line or in a plane
+// normal to every probe), whose N_max is O(gamma^2) of that value or round-off; SCF would reach
+// 1e12-1e43 and alpha_i with it, and the model would blow up at any step
+// (problems/3d/stability_atlas.cpp, 90 % of the pairs broken).
 #pragma once
 #include "pd/core/bonds.hpp"
 #include "pd/core/field.hpp"
@@ -45,6 +50,9 @@ namespace pd {
 
 // Peridigm's probe shear strain [-]: small enough that e is linear in it to ~1e-6 relative.
 inline constexpr double scf_gamma = 1e-6;
+// N_max below this fraction of the full-ball value is a degenerate shear mode (header): a family no
+// probe stretches to first order has N_max ~ gamma^2 = 1e-12 of it (or round-off), real modes far more.
+inline constexpr double scf_degenerate = 1e-8;
 
 namespace detail {
 
@@ -105,7 +113,8 @@ std::vector<double> shear_correction_factor(const Bonds& b, const Field<D>& x, i
             double N_max = 0;
             for (int md = 0; md < modes; ++md)
                 N_max = std::max(N_max, detail::scf_mode_norm<D>(b, x, i, plane[md][0], plane[md][1], gamma, m));
-            if (N_max > 0) scf[i] = 4 * gamma * gamma * m / (a_D * N_max);  // step 4
+            const double full_ball = 4 * gamma * gamma * m / a_D;  // N_max of a full continuum ball
+            if (N_max > scf_degenerate * full_ball) scf[i] = 4 * gamma * gamma * m / (a_D * N_max);  // step 4
         });
     }
     return scf;

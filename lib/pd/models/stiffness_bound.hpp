@@ -3,7 +3,8 @@
 // (dynamic_relaxation.hpp; Kilic & Madenci 2010 eq. 17: lambda_ia >= 1/4 dt^2 sum_(j,b) |K_(ia)(jb)|).
 // Exact row sums for PMB; triangle-inequality bounds for LPS, PALS and correspondence with its
 // hourglass springs; the PMB formula with a stand-in micromodulus c for any other model. Each
-// bound's linearisation is written above its function.
+// bound's linearisation is written above its function. critical_step_gershgorin (time/explicit_step.hpp)
+// turns a bound into a velocity-Verlet step that is stable on the linearised body.
 #pragma once
 #include "pd/bond_loop.hpp"
 #include "pd/core/lattice.hpp"
@@ -213,6 +214,24 @@ Field<D> stiffness_bound(const Correspondence<D>& model, const Bonds& b, const F
         });
         for (int d = 0; d < D; ++d) G.c[d][i] = row(d);
     }
+    return G;
+}
+
+// The bound of any model: its own, or that of the elastic model an inelastic one wraps (.lps of
+// PlasticLPS and ViscoelasticLPS, .pals of PlasticPALS, .model of the inelastic correspondence: the
+// same tangent at the reference), times 1 + gamma_b for a standard linear solid, whose instantaneous
+// shear modulus is G (1 + gamma_b) (conservative: the factor multiplies the bulk terms as well).
+template <class Model, int D>
+Field<D> stiffness_bound_of(const Model& model, const Bonds& b, const Field<D>& x)
+{
+    Field<D> G;
+    if constexpr (requires { stiffness_bound(model, b, x); }) return stiffness_bound(model, b, x);
+    else if constexpr (requires { model.lps; }) G = stiffness_bound(model.lps, b, x);
+    else if constexpr (requires { model.pals; }) G = stiffness_bound(model.pals, b, x);
+    else G = stiffness_bound(model.model, b, x);
+    if constexpr (requires { model.gamma_b; })
+        for (int d = 0; d < D; ++d)
+            for (double& g : G.c[d]) g *= 1 + model.gamma_b;
     return G;
 }
 

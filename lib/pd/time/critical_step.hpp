@@ -14,6 +14,10 @@
 
 namespace pd {
 
+// The source's normal safety factor on the Silling-Askari step (pd_run's default dt = 0.5 dt_crit;
+// its margin on stiff and extreme scenes: problems/3d/stability_atlas.cpp).
+inline constexpr double silling_askari_safety = 0.5;
+
 struct CriticalStep {
     double dt = 0;  // [s]
     int node = -1;  // node that limits it
