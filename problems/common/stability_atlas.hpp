@@ -165,15 +165,6 @@ Linearised linearised(Model& model, const Body<3>& b, const Bonds& bd, double rh
     return r;
 }
 
-// Whether the model's force at given positions is its elastic force (explicit_step.hpp): the stiffness
-// assembled from it is the one Verlet sees.
-template <class Model>
-bool positional(const Model& model)
-{
-    if constexpr (requires { model.par.law; }) return model.par.law == Model::Law::linear;
-    else return positional_force<Model>;
-}
-
 // One run at dt = factor dt_SA (header): stable or not, the energy growth, the step of the guard.
 template <class Model>
 io::StabilityPoint trial(Model& model, const Body<3>& b, Bonds& bd, const Scene& s, double dt_sa, double factor, long steps)
@@ -218,7 +209,7 @@ inline Cell cell(const Variant& v, const Scene& s, long steps, double rel_tol, b
         c.bound = critical_step_gershgorin(stiffness_bound_of(model, bd, b.x), s.rho).dt / c.dt_sa;
         const ExplicitStep e = explicit_step(model, bd, b, s.rho, cm);
         c.chosen = e.dt, c.mode = e.mode_step / c.dt_sa;
-        if (linear && positional(model)) {
+        if (linear && force_is_positional(model)) {
             const Linearised l = linearised(model, b, bd, s.rho);
             c.linear = l.limit / c.dt_sa, c.negative = l.negative, c.growth = l.growth, c.asymmetry = l.asymmetry;
         }

@@ -217,21 +217,35 @@ Field<D> stiffness_bound(const Correspondence<D>& model, const Bonds& b, const F
     return G;
 }
 
-// The bound of any model: its own, or that of the elastic model an inelastic one wraps (.lps of
-// PlasticLPS and ViscoelasticLPS, .pals of PlasticPALS, .model of the inelastic correspondence: the
-// same tangent at the reference), times 1 + gamma_b for a standard linear solid, whose instantaneous
-// shear modulus is G (1 + gamma_b) (conservative: the factor multiplies the bulk terms as well).
+// The elastic model with a model's tangent at the reference: the model itself, or the elastic model an
+// inelastic one wraps (.lps of PlasticLPS and ViscoelasticLPS, .pals of PlasticPALS, .model of the
+// inelastic correspondence). Shared by stiffness_bound_of and highest_frequency (time/explicit_step.hpp).
+template <class Model>
+auto& elastic_part(Model& model)
+{
+    if constexpr (requires { model.lps; }) return model.lps;
+    else if constexpr (requires { model.pals; }) return model.pals;
+    else if constexpr (requires { model.model; }) return model.model;
+    else return model;
+}
+
+// The factor of a model's instantaneous stiffness over its elastic part's: 1 + gamma_b for a standard
+// linear solid (its instantaneous shear modulus is G (1 + gamma_b); conservative for the bulk part), else 1.
+template <class Model>
+double instantaneous_stiffness_factor(const Model& model)
+{
+    if constexpr (requires { model.gamma_b; }) return 1 + model.gamma_b;
+    else return 1.0;
+}
+
+// The bound of any model: that of its elastic part, times its instantaneous stiffness factor.
 template <class Model, int D>
 Field<D> stiffness_bound_of(const Model& model, const Bonds& b, const Field<D>& x)
 {
-    Field<D> G;
-    if constexpr (requires { stiffness_bound(model, b, x); }) return stiffness_bound(model, b, x);
-    else if constexpr (requires { model.lps; }) G = stiffness_bound(model.lps, b, x);
-    else if constexpr (requires { model.pals; }) G = stiffness_bound(model.pals, b, x);
-    else G = stiffness_bound(model.model, b, x);
+    Field<D> G = stiffness_bound(elastic_part(model), b, x);
     if constexpr (requires { model.gamma_b; })
         for (int d = 0; d < D; ++d)
-            for (double& g : G.c[d]) g *= 1 + model.gamma_b;
+            for (double& g : G.c[d]) g *= instantaneous_stiffness_factor(model);
     return G;
 }
 

@@ -40,6 +40,15 @@ template <class Model>
 inline constexpr bool positional_force = std::is_same_v<Model, PMB> || std::is_same_v<Model, LPS> || std::is_same_v<Model, PALS> ||
                                          std::is_same_v<Model, Correspondence<2>> || std::is_same_v<Model, Correspondence<3>>;
 
+// Whether this model's force at given positions is its elastic force (positional_force, and the linear
+// law for correspondence): then the stiffness assembled from it is the one velocity Verlet sees.
+template <class Model>
+bool force_is_positional(const Model& model)
+{
+    if constexpr (requires { model.par.law; }) return positional_force<Model> && model.par.law == Model::Law::linear;
+    else return positional_force<Model>;
+}
+
 namespace detail {
 // Power iteration on a positional force (header).
 template <int D, class Model>
@@ -85,19 +94,19 @@ double power_iteration(Model& model, const Bonds& b, const Body<D>& body, double
 template <int D, class Model>
 double highest_frequency(Model& model, const Bonds& b, const Body<D>& body, double rho, int iterations = highest_mode_iterations)
 {
-    double scale = 1;  // omega factor of a standard linear solid
-    if constexpr (requires { model.gamma_b; }) scale = std::sqrt(1 + model.gamma_b);
-    if constexpr (requires { model.lps; }) return scale * highest_frequency(model.lps, b, body, rho, iterations);
-    else if constexpr (requires { model.pals; }) return highest_frequency(model.pals, b, body, rho, iterations);
-    else if constexpr (requires { model.model; }) return scale * highest_frequency(model.model, b, body, rho, iterations);
-    else if constexpr (requires { model.par.law; }) {
-        if (model.par.law == Model::Law::linear) return detail::power_iteration(model, b, body, rho, iterations);
-        typename Model::Params p = model.par;
-        p.law = Model::Law::linear;
-        Model twin(p, body, b);
-        return detail::power_iteration(twin, b, body, rho, iterations);
-    } else if constexpr (positional_force<Model>) return detail::power_iteration(model, b, body, rho, iterations);
-    else return std::numeric_limits<double>::quiet_NaN();
+    auto& e = elastic_part(model);  // models/stiffness_bound.hpp
+    using E = std::decay_t<decltype(e)>;
+    double omega = std::numeric_limits<double>::quiet_NaN();
+    if constexpr (positional_force<E>) {
+        if (force_is_positional(e)) omega = detail::power_iteration(e, b, body, rho, iterations);
+        else if constexpr (requires { e.par.law; }) {  // correspondence with another law: its linear-law twin
+            typename E::Params p = e.par;
+            p.law = E::Law::linear;
+            E twin(p, body, b);
+            omega = detail::power_iteration(twin, b, body, rho, iterations);
+        }
+    }
+    return std::sqrt(instantaneous_stiffness_factor(model)) * omega;
 }
 
 // Critical step of velocity Verlet from a bound G [N/m^4 per m in 3D]: by Gershgorin every
