@@ -1,5 +1,6 @@
 // The stability sweep finds the von Neumann limit of velocity Verlet on a linear oscillator:
-// for omega = 1 the scheme is stable for dt < 2 / omega and unstable beyond (closed form).
+// for omega = 1 the scheme is stable for dt < 2 / omega and unstable beyond (closed form); the ladder of
+// the unconditionally stable schemes stops at the first unstable factor.
 #include "problems/common/stability_sweep.hpp"
 #include "pd/models/pmb.hpp"
 #include "pd/time/verlet.hpp"
@@ -61,4 +62,17 @@ TEST(StabilitySweep, AllUnstableHalvesUntilStableWhenAllowed)
     const auto old = io::stability_sweep({6.0}, run_oscillator, 8.0, 0.01);  // no min_factor: no search downwards
     EXPECT_TRUE(std::isnan(old.threshold));
     EXPECT_EQ(old.points.size(), 1u);
+}
+
+TEST(StabilitySweep, LadderStopsAtTheFirstUnstableFactor)
+{
+    bool bracketed = true;
+    const auto r = io::stability_ladder({0.5, 1.0, 1.9, 2.5, 3.0}, run_oscillator, bracketed);  // Verlet: unstable beyond 2
+    EXPECT_EQ(r.threshold, 1.9);
+    EXPECT_TRUE(bracketed);
+    ASSERT_EQ(r.points.size(), 4u);  // 3.0 is not run
+    EXPECT_FALSE(r.points.back().stable);
+    const auto below = io::stability_ladder({0.5, 1.0}, run_oscillator, bracketed);
+    EXPECT_EQ(below.threshold, 1.0);  // a lower bound only: nothing failed
+    EXPECT_FALSE(bracketed);
 }

@@ -15,6 +15,11 @@
 //           (1e-3: the linear regime), unstable when the energy guard of pd::Explicit fires
 //           (mechanical energy above 10 x the initial, checked every 10 steps); factor 1 first, then
 //           doubled or halved until the bracket closes, bisected to rel_tol (common/stability_sweep.hpp).
+// Newmark (average acceleration, time/newmark.hpp; unconditionally stable on a linear body): instead of
+// the bisection, a ladder of factors (1 ... 1000 dt_SA, common/stability_sweep.hpp), the largest one
+// stable with every smaller one; a step whose Newton iterations fail ends the ladder too (unstable_step
+// newton_failed: no energy growth, the step's equations were not solved). Only the
+// models with a positional force (no history, linear law: Newmark's tangent is the elastic one).
 // Axes (Scene): m = delta/dx; jitter (every coordinate moved by up to jitter dx); nu at fixed E;
 // damage (that fraction of the pairs broken at random before the run, no breaking during it; dt_SA
 // is the undamaged body's, as pd_run computes it before bonds break); gap (two neighbours moved to
@@ -27,6 +32,7 @@
 #include "pd/models/stiffness_bound.hpp"
 #include "pd/time/critical_step.hpp"
 #include "pd/time/explicit_step.hpp"
+#include "pd/time/newmark.hpp"
 #include "pd/time/verlet.hpp"
 #include "problems/common/analysis/stiffness_matrix.hpp"
 #include "problems/common/stability_sweep.hpp"
@@ -165,31 +171,72 @@ Linearised linearised(Model& model, const Body<3>& b, const Bonds& bd, double rh
     return r;
 }
 
+// v less the rigid-body motion of the body (equal density): the translation and the rotation
+// omega = I^-1 L about the centre of mass. A random field's rotation would turn the body by radians
+// over Newmark's long steps, a geometric nonlinearity of its own; the elastic modes stay.
+inline void without_rigid_motion(const Body<3>& b, Field<3>& v)
+{
+    double mass = 0;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero(), p = Eigen::Vector3d::Zero(), L = Eigen::Vector3d::Zero();
+    auto x = [&](std::size_t i) { return Eigen::Vector3d(b.x.c[0][i], b.x.c[1][i], b.x.c[2][i]); };
+    auto w = [&](std::size_t i) { return Eigen::Vector3d(v.c[0][i], v.c[1][i], v.c[2][i]); };
+    for (std::size_t i = 0; i < b.size(); ++i) mass += b.volume[i], c += b.volume[i] * x(i), p += b.volume[i] * w(i);
+    c /= mass, p /= mass;
+    Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        const Eigen::Vector3d r = x(i) - c;
+        L += b.volume[i] * r.cross(w(i) - p);
+        I += b.volume[i] * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+    }
+    const Eigen::Vector3d omega = I.ldlt().solve(L);
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        const Eigen::Vector3d u = w(i) - p - omega.cross(x(i) - c);
+        for (int d = 0; d < 3; ++d) v.c[d][i] = u(d);
+    }
+}
+
+enum class Integrator { verlet, newmark };
+constexpr long newton_failed = -2;  // StabilityPoint::unstable_step of a Newmark run whose Newton iterations failed
+inline const char* name(Integrator i) { return i == Integrator::verlet ? "verlet" : "newmark"; }
+
 // One run at dt = factor dt_SA (header): stable or not, the energy growth, the step of the guard.
-template <class Model>
-io::StabilityPoint trial(Model& model, const Body<3>& b, Bonds& bd, const Scene& s, double dt_sa, double factor, long steps)
+template <class Sim>
+io::StabilityPoint trial(Sim& sim, const Scene& s, double dt_sa, double factor, long steps)
 {
     const double speed = s.strain * std::sqrt(s.E / s.rho);  // [m/s]
-    Explicit<3, Model> sim(b, bd, model, s.rho);
     std::mt19937 gen(11);
     std::uniform_real_distribution<double> v(-speed, speed);
     for (int d = 0; d < 3; ++d)
         for (double& c : sim.v.c[d]) c = v(gen);
+    without_rigid_motion(sim.scene.body, sim.v);
     sim.start();
     io::StabilityPoint p{factor, factor * dt_sa, dt_sa};
     double e_max = sim.initial_energy();
+    auto track = [&](const Energies& e) { e_max = std::max(e_max, e.kinetic + e.strain); };
     try {
-        sim.advance(steps, factor * dt_sa, 10, [&](const Energies& e) { e_max = std::max(e_max, e.kinetic + e.strain); });
+        if constexpr (requires { sim.advance(steps, factor * dt_sa, 10, track); }) {
+            sim.advance(steps, factor * dt_sa, 10, track);
+        } else {
+            for (long n = 1; n <= steps; ++n) {
+                sim.step(factor * dt_sa);
+                if (n % 10 == 0) track(sim.check_energy());
+            }
+        }
     } catch (const Unstable& u) {
         p.stable = false;
         p.unstable_step = u.step;
+    } catch (const std::runtime_error&) {  // Newmark: Newton did not converge within a step
+        p.stable = false;
+        p.unstable_step = newton_failed;
     }
     p.energy_growth = e_max / sim.initial_energy();
     return p;
 }
 
-// The whole cell (header); rel_tol of the bisection, linear: assemble the stiffness.
-inline Cell cell(const Variant& v, const Scene& s, long steps, double rel_tol, bool linear)
+// The whole cell (header); rel_tol of the bisection, linear: assemble the stiffness; ladder: Newmark's
+// factors. A model Newmark cannot integrate gives a cell with no runs (c.stable.points empty).
+inline Cell cell(const Variant& v, const Scene& s, long steps, double rel_tol, bool linear, Integrator integrator = Integrator::verlet,
+                 const std::vector<double>& ladder = {})
 {
     io::Timer timer;
     Cell c;
@@ -215,8 +262,25 @@ inline Cell cell(const Variant& v, const Scene& s, long steps, double rel_tol, b
         }
         return 0;
     });
-    auto run = [&](double f) { return with_variant(w, b, bd, [&](auto& model) { return trial(model, b, bd, s, c.dt_sa, f, steps); }); };
-    c.stable = io::stability_sweep({1.0}, run, 64.0, rel_tol, 1.0 / 64);
+    auto run = [&](double f) {
+        return with_variant(w, b, bd, [&](auto& model) {
+            using Model = std::decay_t<decltype(model)>;
+            if constexpr (!HistoryModel<Model, 3>) {
+                if (integrator == Integrator::newmark) {
+                    Newmark<3, Model> sim(b, bd, model, s.rho);
+                    return trial(sim, s, c.dt_sa, f, steps);
+                }
+            }
+            Explicit<3, Model> sim(b, bd, model, s.rho);
+            return trial(sim, s, c.dt_sa, f, steps);
+        });
+    };
+    if (integrator == Integrator::verlet) {
+        c.stable = io::stability_sweep({1.0}, run, 64.0, rel_tol, 1.0 / 64);
+    } else if (with_variant(w, b, bd, [](auto& model) { return !HistoryModel<std::decay_t<decltype(model)>, 3> && force_is_positional(model); })) {
+        bool bracketed = false;
+        c.stable = io::stability_ladder(ladder, run, bracketed);
+    }
     c.wall_s = timer.seconds();
     return c;
 }

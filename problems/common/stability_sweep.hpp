@@ -66,6 +66,27 @@ inline StabilityResult stability_sweep(const std::vector<double>& factors,
     return r;
 }
 
+// For a scheme meant to be stable at any step (implicit Euler, CVODE, Newmark): the factors run in
+// order until one is unstable. The threshold is the largest factor stable with every smaller one, a
+// lower bound of the limit (nothing is bracketed unless a run failed: `bracketed`).
+inline StabilityResult stability_ladder(const std::vector<double>& factors, const std::function<StabilityPoint(double)>& run,
+                                        bool& bracketed)
+{
+    StabilityResult r;
+    r.threshold = 0;
+    bracketed = false;
+    for (double f : factors) {
+        r.points.push_back(run(f));
+        r.points.back().kind = "ladder";
+        if (!r.points.back().stable) {
+            bracketed = true;
+            break;
+        }
+        r.threshold = f;
+    }
+    return r;
+}
+
 // Aligned table of the points, one per line, with a label column.
 inline void print_stability(std::ostream& os, const std::string& label, const std::vector<StabilityPoint>& pts)
 {

@@ -28,6 +28,7 @@
 #include <Eigen/SparseLU>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -164,7 +165,7 @@ public:
         const std::size_t n = theta.size();
         std::vector<double> rc(n);
         for (std::size_t i = 0; i < n; ++i) rc[i] = rho_c(i, theta[i]);
-        if (!lu_ || dt != lu_dt_ || rc != lu_rc_ || bonds_.has_damage()) factorise(dt, rc);
+        if (!lu_ || dt != lu_dt_ || rc != lu_rc_ || operator_may_have_changed()) factorise(dt, rc);
         apply_fixed(theta);
         Eigen::VectorXd rhs(n), held_values = Eigen::VectorXd::Zero(n);
         for (std::size_t i = 0; i < n; ++i) {
@@ -268,6 +269,16 @@ private:
             theta, "implicit Euler");
     }
 
+    // Since the last factorisation: a bond broke, or the operator follows a deformation (correspondence
+    // heat with set_deformation: F changes with every mechanical step).
+    bool operator_may_have_changed() const
+    {
+        if (bonds_.intact != lu_intact_) return true;
+        if constexpr (requires { model_.deformation; }) return model_.deformation != nullptr;
+        else if constexpr (requires { model_.base.deformation; }) return model_.base.deformation != nullptr;
+        else return false;
+    }
+
     void factorise(double dt, const std::vector<double>& rc)
     {
         std::vector<double> diag(rc.size());
@@ -278,6 +289,7 @@ private:
         if (lu_->info() != Eigen::Success) throw std::runtime_error("implicit Euler: sparse LU failed");
         lu_dt_ = dt;
         lu_rc_ = rc;
+        lu_intact_ = bonds_.intact;
     }
 
     // M_ = diag(c + h) - A on the free rows, identity on the held rows; coupling_ = the free-row,
@@ -314,6 +326,7 @@ private:
     Eigen::SparseMatrix<double> M_;         // matrix of the last implicit or steady system
     double lu_dt_ = 0;
     std::vector<double> lu_rc_;
+    std::vector<std::uint8_t> lu_intact_;  // the bonds of the factorised operator (a break changes it)
 };
 
 // Thermal critical step of explicit Euler [s] (spec/000b sec. 3.7, eq. 3.20): the eigenvalues of

@@ -12,8 +12,12 @@
 //                        suppression term of bond i-j with the same k_ij as Agwai.
 // Q(theta) = A(s(theta)) theta with A the linear operator at frozen node factors s_i = k(theta_i):
 // the implicit integrators iterate on it (Picard, conduction.hpp), CVODE uses it as its approximate
-// Jacobian (heat_cvode.hpp). A constant k never goes through this wrapper: with_conductivity()
-// builds the plain model then, so constant-k scenes keep their code path and results bit for bit.
+// Jacobian (heat_cvode.hpp). A material contrast: node factors f_i (optional) make node i's
+// conductivity f_i k(theta_i), the same rules then hold with s_i = f_i k(theta_i) (the arithmetic bond
+// mean keeps heat conserved across an interface); ConductivityContrast<Model> is the linear case, a
+// constant k with node factors (a bimaterial body, problems/common/heat_stability_atlas.hpp). A
+// constant k without factors never goes through this wrapper: with_conductivity() builds the plain
+// model then, so constant-k scenes keep their code path and results bit for bit.
 // Explicit Euler: thermal_critical_step_k() bounds the step with the largest k over a temperature
 // range (by the maximum principle, [min, max] of the initial and held temperatures when there is no
 // source), Property::max_over.
@@ -26,31 +30,44 @@
 #include <Eigen/Sparse>
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 namespace pd {
 
-template <class Model>
-struct ConductivityOfTheta {
+// OfTheta = false: a constant k with node factors (ConductivityContrast), linear in theta (implicit
+// Euler factorises once, CVODE's Jacobian is exact).
+template <class Model, bool OfTheta>
+struct ScaledConductivity {
     static constexpr bool has_point_pass = true;
-    static constexpr bool nonlinear = true;  // Q is not linear in theta: implicit schemes iterate
+    static constexpr bool nonlinear = OfTheta;  // Q is not linear in theta: implicit schemes iterate
     using Params = typename Model::Params;
 
     Model base;              // the model at k = 1 W/(m K)
     Property k;              // k(theta) [W/(m K)]
-    std::vector<double> s;   // k(theta_i) at the last point pass [W/(m K)]; 0 before the first one
+    std::vector<double> node_factor;  // f_i [-] (header); empty: 1 at every node
+    std::vector<double> s;   // f_i k(theta_i) at the last point pass [W/(m K)]; 0 before the first one
+                             // (ConductivityContrast: formed at construction)
 
-    // params: the model's parameters (its k is ignored and set to 1).
+    // params: the model's parameters (its k is ignored and set to 1); factors: f_i, one per node, or none.
     template <int D>
-    ConductivityOfTheta(typename Model::Params params, Property k_of_theta, const Body<D>& body, const Bonds& b)
-        : base(unit(params), body, b), k(std::move(k_of_theta)), s(b.nodes(), 0.0)
+    ScaledConductivity(typename Model::Params params, Property k_of_theta, const Body<D>& body, const Bonds& b,
+                       std::vector<double> factors = {})
+        : base(unit(params), body, b), k(std::move(k_of_theta)), node_factor(std::move(factors)), s(b.nodes(), 0.0)
     {
+        if (!node_factor.empty() && node_factor.size() != b.nodes())
+            throw std::invalid_argument("conductivity: one conductivity factor per node");
+        for (double f : node_factor)
+            if (!(f > 0)) throw std::invalid_argument("conductivity: conductivity factors must be positive");
+        if (!OfTheta && !k.is_constant()) throw std::invalid_argument("ConductivityContrast: k must be constant (else ConductivityOfTheta)");
+        if (!OfTheta) point_pass(b, std::vector<double>(b.nodes(), 0.0));  // its conductivities, once
     }
+    double factor(std::size_t i) const { return node_factor.empty() ? 1.0 : node_factor[i]; }
 
     void point_pass(const Bonds& b, const std::vector<double>& theta)
     {
-        parallel_for(b.nodes(), [&](std::size_t i) { s[i] = k(theta[i]); });
+        parallel_for(b.nodes(), [&](std::size_t i) { s[i] = factor(i) * k(theta[i]); });
         if constexpr (Model::has_point_pass) base.point_pass_scaled(b, theta, [this](std::size_t i) { return s[i]; });
     }
     double bond_heat(std::size_t i, std::int64_t kb, int j, double dtheta) const
@@ -76,6 +93,10 @@ private:
         return p;
     }
 };
+template <class Model>
+using ConductivityOfTheta = ScaledConductivity<Model, true>;
+template <class Model>
+using ConductivityContrast = ScaledConductivity<Model, false>;
 
 // Calls f(model) with the plain model when k is constant (k(theta) = k(0) everywhere) and with
 // ConductivityOfTheta<Model> otherwise: the choice is made once, outside every loop.
@@ -92,7 +113,7 @@ decltype(auto) with_conductivity(typename Model::Params params, const Property& 
 }
 
 // Explicit-Euler critical step [s] with k(theta) <= k_max on [theta_lo, theta_hi]: the Gershgorin
-// bound of the operator with every conductivity set to k_max (thermal_critical_step). For Agwai every
+// bound of the operator with every conductivity set to k_max (times its node factor) (thermal_critical_step). For Agwai every
 // entry of the operator grows with the conductivities, so the bound holds for any field in that range;
 // for correspondence heat it is the bound of the k_max operator (an estimate for mixed conductivities).
 // For a plain model it is thermal_critical_step. (thermal_critical_step on the wrapper itself uses the
@@ -103,7 +124,8 @@ double thermal_critical_step_k(const Model& model, const Bonds& b, const Conduct
 {
     if constexpr (requires { model.k.max_over(theta_lo, theta_hi); }) {
         Model bound = model;
-        std::fill(bound.s.begin(), bound.s.end(), model.k.max_over(theta_lo, theta_hi));
+        const double k_max = model.k.max_over(theta_lo, theta_hi);
+        for (std::size_t i = 0; i < bound.s.size(); ++i) bound.s[i] = model.factor(i) * k_max;
         return thermal_critical_step(bound, b, c, theta);
     } else {
         return thermal_critical_step(model, b, c, theta);
