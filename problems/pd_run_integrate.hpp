@@ -190,6 +190,35 @@ void choose_step(Run& cfg, Model& model, const pd::Bonds& bonds, const pd::Body<
     std::fflush(stdout);
 }
 
+// Damage during a run (--s0): choose_step sees the intact body, and a damaged correspondence body's
+// highest mode can be several times faster (reports/3d/stability_atlas.md). Each time another
+// recheck_fraction of the bonds has broken, 2/omega_max of the body with its bonds as they are (a copy
+// of the run's model, linearised at the reference: pd::highest_frequency) is estimated again; a step
+// above dt_safety x that is reported with the step number. The run goes on (its energy guard stops it
+// if it blows up); the fix is a smaller --dt.
+constexpr double recheck_fraction = 0.05;
+struct DamageStepWatch {
+    long next = -1;    // broken bonds at which to look again (-1: the first look not yet due)
+    int warnings = 0;  // looks that found dt too large
+    template <int D, class Model>
+    void look(long n, long broken, double dt, const Model& model, const pd::Bonds& bonds, const pd::Body<D>& body, double rho)
+    {
+        const long every = std::max(1L, static_cast<long>(recheck_fraction * double(bonds.size())));
+        if (next < 0) next = every;
+        if (broken < next) return;
+        next = broken + every;
+        Model probe = model;  // the run's model keeps its point-pass state for the energies of step n
+        const double omega = pd::highest_frequency(probe, bonds, body, rho);  // [1/s]; 0: no bond left
+        if (!(omega > 0)) return;
+        const double allowed = dt_safety * 2 / omega;
+        if (dt <= allowed) return;
+        ++warnings;
+        std::printf("warning: step %ld, %ld of %zu bonds broken: the damaged body's highest mode allows dt = %.6g s (%.2g x 2/omega_max); "
+                    "dt = %.6g s is %.3g x that (a smaller --dt is safer)\n", n, broken, bonds.size(), allowed, dt_safety, dt, dt / allowed);
+        std::fflush(stdout);
+    }
+};
+
 // 4.-5. Mechanics, with the heat run (if any) as the scene's heat component (pd/scene.hpp): before
 // the forces of mechanical step n it takes the thermal steps m with m dt_thermal <= n dt (relative
 // slack 1e-12 for round-off; pd/heat/temperature_field.hpp).
@@ -286,6 +315,7 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
         if (s_step) pd::io::write_state<D>(cfg.out, n, pc, f);
         if (v_step) vtu.write<D>(n, sim.t, pc, f);
     };
+    DamageStepWatch watch;
     auto step = [&](long n) {
         if constexpr (pd::DissipativeModel<Model>)  // the heat released in step n raises the heat guard's ceiling
             if (heat && cfg.nsync_mh > 0 && n % cfg.nsync_mh == 0) {
@@ -294,13 +324,16 @@ int integrate(const Run& cfg, const pd::io::PointCloud& pc, const pd::Body<D>& b
             }
         sim.step(cfg.dt);
         add_step_heat();
+        if (cfg.s0 > 0) watch.look(n, sim.broken_bonds, cfg.dt, model, bonds, body, cfg.rho);
     };
     pd::io::Timer timer;
     const int status = step_loop(cfg.checkpoints, cfg.steps, step, output, state);
     if (status != 0) return status;
     std::printf("\n  step %ld  t = %.6g s  kinetic %.6g J  strain %.6g J  external work %.6g J  total %.6g J  balance error %.3g J\n",
                 cfg.steps, sim.t, last.kinetic, last.strain, last.external_work, last.total(), last.balance);
-    if (cfg.s0 > 0) std::printf("  broken bonds %ld of %zu (ordered pairs)\n", sim.broken_bonds, bonds.size());
+    if (cfg.s0 > 0)
+        std::printf("  broken bonds %ld of %zu (ordered pairs); dt above the damaged body's step at %d of the rechecks every %.0f %% of the bonds\n",
+                    sim.broken_bonds, bonds.size(), watch.warnings, 100 * recheck_fraction);
     if (heat) report_heat(*heat);
     std::printf("%s: done, %ld steps in %.3g s; wrote %s\n", program, cfg.steps, timer.seconds(), cfg.out.string().c_str());
     return 0;
