@@ -197,7 +197,6 @@ inline void without_rigid_motion(const Body<3>& b, Field<3>& v)
 
 enum class Integrator { verlet, newmark };
 constexpr long newton_failed = -2;  // StabilityPoint::unstable_step of a Newmark run whose Newton iterations failed
-inline const char* name(Integrator i) { return i == Integrator::verlet ? "verlet" : "newmark"; }
 
 // One run at dt = factor dt_SA (header): stable or not, the energy growth, the step of the guard.
 template <class Sim>
