@@ -40,7 +40,7 @@ TEST(ConductivityContrast, BondConductsWithTheMeanOfItsEnds)
         for (std::int64_t b = p.bonds.begin(i); b < p.bonds.end(i); ++b) {
             const int j = p.bonds.partner[b];
             const double expected = 0.5 * (f[i] + f[std::size_t(j)]) * k * A1.coeff(int(i), j);  // the rule of the header
-            EXPECT_NEAR(A.coeff(int(i), j), expected, 1e-14 * std::abs(expected));
+            EXPECT_NEAR(A.coeff(int(i), j), expected, 1e-14 * std::abs(expected));  // a few roundings of one product
             across += f[i] != f[std::size_t(j)];
             row += A.coeff(int(i), j);
         }

@@ -36,13 +36,9 @@ const std::vector<HeatVariant> variants{{"agwai", "agwai"}, {"correspondence-hea
 // The scene of one axis value: the base scene with that one field changed.
 pd::atlas::HeatScene along(pd::atlas::HeatScene s, const std::string& axis, double value)
 {
-    if (axis == "m") s.geometry.m = value;
-    else if (axis == "jitter") s.geometry.jitter = value;
-    else if (axis == "damage") s.geometry.damage = value;
-    else if (axis == "gap") s.geometry.gap = value;
-    else if (axis == "partial") s.geometry.partial = value > 0;
-    else if (axis == "k-contrast") s.k_contrast = value;
+    if (axis == "k-contrast") s.k_contrast = value;
     else if (axis == "c-contrast") s.c_contrast = value;
+    else pd::atlas::set_body_axis(s.geometry, axis, value);
     return s;
 }
 
@@ -100,10 +96,7 @@ static int run_case(int argc, char** argv)
     std::map<std::string, std::vector<double>> values;  // every list checked, chosen or not
     for (const std::string& a : all_axes) values[a] = pd::io::list_option(opt, a + "-values", pd::io::ListValues::non_negative);
     const std::vector<double> ladder = pd::io::list_option(opt, "ladder", pd::io::ListValues::positive);
-    for (double m : values["m"]) if (m < 1) opt.fail("option --m-values: every ratio must be >= 1");
-    for (double j : values["jitter"]) if (!(j < 0.5)) opt.fail("option --jitter-values: below 0.5 (points would cross)");
-    for (double f : values["damage"]) if (!(f < 1)) opt.fail("option --damage-values: fractions below 1");
-    for (double g : values["gap"]) if (!(g > 0 && g <= 1)) opt.fail("option --gap-values: in (0, 1]");
+    pd::atlas::check_body_axes(opt, values);
     for (const char* a : {"k-contrast", "c-contrast"})
         for (double r : values[a]) if (!(r > 0)) opt.fail(std::string("option --") + a + "-values: ratios must be positive");
     run.start();

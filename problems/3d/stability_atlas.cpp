@@ -56,12 +56,8 @@ std::vector<Variant> variants(const pd::Elastic& mat)
 pd::atlas::Scene along(pd::atlas::Scene s, const std::string& axis, double value)
 {
     if (axis == "strain") s.strain = value;
-    else if (axis == "m") s.m = value;
-    else if (axis == "jitter") s.jitter = value;
     else if (axis == "nu") s.nu = value;
-    else if (axis == "damage") s.damage = value;
-    else if (axis == "gap") s.gap = value;
-    else if (axis == "partial") s.partial = value > 0;
+    else pd::atlas::set_body_axis(s, axis, value);
     return s;
 }
 
@@ -120,11 +116,8 @@ static int run_case(int argc, char** argv)
     const std::vector<double> ladder = pd::io::list_option(opt, "newmark-ladder", pd::io::ListValues::positive);
     std::map<std::string, std::vector<double>> values;  // every list checked, chosen or not
     for (const std::string& a : all_axes) values[a] = pd::io::list_option(opt, a + "-values", pd::io::ListValues::non_negative);
-    for (double m : values["m"]) if (m < 1) opt.fail("option --m-values: every ratio must be >= 1");
+    pd::atlas::check_body_axes(opt, values);
     for (double nu : values["nu"]) if (!(nu < 0.5)) opt.fail("option --nu-values: every ratio must be below 0.5");
-    for (double j : values["jitter"]) if (!(j < 0.5)) opt.fail("option --jitter-values: below 0.5 (points would cross)");
-    for (double f : values["damage"]) if (!(f < 1)) opt.fail("option --damage-values: fractions below 1");
-    for (double g : values["gap"]) if (!(g > 0 && g <= 1)) opt.fail("option --gap-values: in (0, 1]");
     for (double e : values["strain"]) if (!(e > 0 && e <= 1)) opt.fail("option --strain-values: in (0, 1]");
     run.start();
 

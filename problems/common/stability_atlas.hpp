@@ -28,6 +28,7 @@
 #pragma once
 #include "pd/core/lattice.hpp"
 #include "pd/core/timer.hpp"
+#include "pd/io/options.hpp"
 #include "pd/models/dissipative_registry.hpp"
 #include "pd/models/stiffness_bound.hpp"
 #include "pd/time/critical_step.hpp"
@@ -42,6 +43,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <random>
 #include <string>
 
@@ -91,6 +93,26 @@ inline double pair_uniform(int i, int j)
     return double(h >> 11) * 0x1.0p-53;
 }
 }  // namespace detail
+
+// The scene with one of the body's axes set (m, jitter, damage, gap, partial; the mechanical atlas
+// adds nu and strain, the heat atlas its contrasts); any other axis leaves the scene as it is.
+inline void set_body_axis(Scene& s, const std::string& axis, double value)
+{
+    if (axis == "m") s.m = value;
+    else if (axis == "jitter") s.jitter = value;
+    else if (axis == "damage") s.damage = value;
+    else if (axis == "gap") s.gap = value;
+    else if (axis == "partial") s.partial = value > 0;
+}
+
+// Refuses body-axis values that make no body (exit status 2 through Options::fail).
+inline void check_body_axes(const io::Options& opt, std::map<std::string, std::vector<double>>& values)
+{
+    for (double m : values["m"]) if (m < 1) opt.fail("option --m-values: every ratio must be >= 1");
+    for (double j : values["jitter"]) if (!(j < 0.5)) opt.fail("option --jitter-values: below 0.5 (points would cross)");
+    for (double f : values["damage"]) if (!(f < 1)) opt.fail("option --damage-values: fractions below 1");
+    for (double g : values["gap"]) if (!(g > 0 && g <= 1)) opt.fail("option --gap-values: in (0, 1]");
+}
 
 // The cell's body: lattice, jitter (seeded), and the near-duplicate pair (the point nearest the
 // centre and its +x neighbour, moved to gap dx from it).

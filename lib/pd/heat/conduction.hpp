@@ -274,8 +274,7 @@ private:
     bool operator_may_have_changed() const
     {
         if (bonds_.intact != lu_intact_) return true;
-        if constexpr (requires { model_.deformation; }) return model_.deformation != nullptr;
-        else if constexpr (requires { model_.base.deformation; }) return model_.base.deformation != nullptr;
+        if constexpr (requires { model_.follows_deformation(); }) return model_.follows_deformation();
         else return false;
     }
 

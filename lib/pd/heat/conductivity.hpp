@@ -64,6 +64,11 @@ struct ScaledConductivity {
         if (!OfTheta) point_pass(b, std::vector<double>(b.nodes(), 0.0));  // its conductivities, once
     }
     double factor(std::size_t i) const { return node_factor.empty() ? 1.0 : node_factor[i]; }
+    bool follows_deformation() const
+    {
+        if constexpr (requires { base.follows_deformation(); }) return base.follows_deformation();
+        else return false;
+    }
 
     void point_pass(const Bonds& b, const std::vector<double>& theta)
     {

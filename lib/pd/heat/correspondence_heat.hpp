@@ -54,6 +54,8 @@ struct CorrespondenceHeat {
     const Bonds* bonds = nullptr;
     const std::vector<Mat>* deformation = nullptr;  // F per node (header); null: undeformed
 
+    // Whether the heat operator follows attached deformation gradients (it changes with them).
+    bool follows_deformation() const { return deformation != nullptr; }
     // Attaches the deformation gradients F [-] (kept by reference, one per node); nullptr detaches.
     void set_deformation(const std::vector<Mat>* F)
     {
